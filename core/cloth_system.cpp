@@ -1,0 +1,199 @@
+#include "core/cloth_system.hpp"
+
+#include <vector>
+
+#include "core/forces.hpp"
+
+namespace drape {
+
+ClothSystem::ClothSystem(Cloth cloth, std::shared_ptr<const Dummy> dummy, ForceParams params)
+    : m_cloth(std::move(cloth)),
+      m_dummy(std::move(dummy)),
+      m_params(params),
+      m_constraints(m_cloth.size()) {}
+
+Eigen::VectorXd ClothSystem::initial_state(double t) const {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(size());
+  const Eigen::Index n3 = 3 * num_particles();
+  y.head(n3) = m_cloth.rest_positions;
+  m_constraints.project(t, VecMap(y.data(), n3), VecMap(y.data() + n3, n3));
+  return y;
+}
+
+void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f) const {
+  const SpringSet& springs = m_cloth.springs;
+  const double c_spring = m_cloth.params.damping_spring;
+  const double c_air = m_cloth.params.damping_air;
+  const Vec3 weight = particle_mass() * m_params.gravity;
+  const int n = num_particles();
+
+  for (int i = 0; i < n; ++i) particle(f, i) = weight - c_air * particle(v, i);
+
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    const int i = springs.first[e], j = springs.second[e];
+    const Vec3 d = particle(x, j) - particle(x, i);
+    const double length = d.norm();
+    if (length < degenerate_length) continue;
+    const Vec3 u = d / length;
+    const double magnitude = springs.stiffness[e] * (length - springs.rest[e]) +
+                             c_spring * (particle(v, j) - particle(v, i)).dot(u);
+    const Vec3 force = magnitude * u;
+    particle(f, i) += force;
+    particle(f, j) -= force;
+  }
+
+  if (!m_dummy) return;
+  const double delta = m_params.collision.threshold;
+  const double k = m_params.collision.stiffness;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 xi = particle(x, i);
+    const NearestObjectParticle hit = m_dummy->nearest_within(xi, delta);
+    if (hit.index < 0) continue;
+    particle(f, i) += collision_force(xi - m_dummy->position(hit.index), m_dummy->normal(hit.index),
+                                      k, delta);
+  }
+}
+
+void ClothSystem::acceleration(double t, ConstVecRef x, ConstVecRef v,
+                               VecRef a) const {
+  forces(x, v, a);
+  a /= particle_mass();
+  for (const int i : m_constraints.fixed_particles())
+    particle(a, i) = m_constraints.trajectory(i)->acceleration(t);
+}
+
+void ClothSystem::rhs(double t, ConstVecRef y, VecRef y_dot) const {
+  const Eigen::Index n3 = 3 * num_particles();
+  const ConstVecMap x(y.data(), n3), v(y.data() + n3, n3);
+  VecMap x_dot(y_dot.data(), n3), v_dot(y_dot.data() + n3, n3);
+  x_dot = v;
+  forces(x, v, v_dot);
+  v_dot /= particle_mass();
+  m_constraints.apply_to_rhs(t, x_dot, v_dot);
+}
+
+int ClothSystem::project(double t, VecRef x, VecRef v) const {
+  int corrected = 0;
+  if (m_dummy) {
+    const auto& fixed = m_constraints.mask();
+    for (int i = 0; i < num_particles(); ++i) {
+      if (fixed[i] || !m_dummy->inside(particle(x, i))) continue;
+      const int o = m_dummy->nearest(particle(x, i)).index;
+      const Vec3 normal = m_dummy->normal(o);
+      particle(x, i) = m_dummy->position(o);
+      const double inward = particle(v, i).dot(normal);
+      if (inward < 0.0) particle(v, i) -= inward * normal;
+      ++corrected;
+    }
+  }
+  m_constraints.project(t, x, v);
+  return corrected;
+}
+
+EnergyBreakdown ClothSystem::energy(ConstVecRef x, ConstVecRef v) const {
+  EnergyBreakdown e;
+  const double m = particle_mass();
+  e.kinetic = 0.5 * m * v.squaredNorm();
+  const SpringSet& springs = m_cloth.springs;
+  for (Eigen::Index s = 0; s < springs.size(); ++s)
+    e.spring += spring_energy(particle(x, springs.second[s]) - particle(x, springs.first[s]),
+                              springs.stiffness[s], springs.rest[s]);
+  for (int i = 0; i < num_particles(); ++i) e.gravity -= m * m_params.gravity.dot(particle(x, i));
+  if (m_dummy) {
+    const double delta = m_params.collision.threshold;
+    for (int i = 0; i < num_particles(); ++i) {
+      const Vec3 xi = particle(x, i);
+      const NearestObjectParticle hit = m_dummy->nearest_within(xi, delta);
+      if (hit.index >= 0)
+        e.collision += collision_energy(xi - m_dummy->position(hit.index),
+                                        m_params.collision.stiffness, delta);
+    }
+  }
+  return e;
+}
+
+// Calls visit(i, j, Jx, Jv) for every pair block: j >= 0 for springs (the pair pattern of
+// forces.hpp), j < 0 for a block acting on particle i alone (dF_i/dx_i, dF_i/dv_i).
+template <class Visit>
+void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v,
+                                          bool definite, Visit&& visit) const {
+  const SpringSet& springs = m_cloth.springs;
+  const double c_spring = m_cloth.params.damping_spring;
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    const int i = springs.first[e], j = springs.second[e];
+    const Vec3 d = particle(x, j) - particle(x, i);
+    Mat3 jx = spring_jacobian(d, springs.stiffness[e], springs.rest[e], definite);
+    Mat3 jv = Mat3::Zero();
+    if (c_spring > 0.0) {
+      jv = damping_velocity_jacobian(d, c_spring);
+      // The damping's dependence on x is not symmetric; a definite (SPD) request leaves it out.
+      if (!definite) jx += damping_position_jacobian(d, particle(v, j) - particle(v, i), c_spring);
+    }
+    visit(i, j, jx, jv);
+  }
+  const Mat3 air = -m_cloth.params.damping_air * Mat3::Identity();
+  const double delta = m_params.collision.threshold;
+  const double k = m_params.collision.stiffness;
+  for (int i = 0; i < num_particles(); ++i) {
+    Mat3 jx = Mat3::Zero();
+    if (m_dummy) {
+      const Vec3 xi = particle(x, i);
+      const NearestObjectParticle hit = m_dummy->nearest_within(xi, delta);
+      if (hit.index >= 0)
+        jx = collision_jacobian(xi - m_dummy->position(hit.index), k, delta, definite);
+    }
+    visit(i, -1, jx, air);
+  }
+}
+
+void ClothSystem::force_jacobian_times(ConstVecRef x, ConstVecRef v,
+                                       ConstVecRef dx, ConstVecRef dv, VecRef out,
+                                       bool definite) const {
+  out.setZero();
+  for_each_jacobian_block(x, v, definite, [&](int i, int j, const Mat3& jx, const Mat3& jv) {
+    if (j < 0) {
+      particle(out, i) += jx * particle(dx, i) + jv * particle(dv, i);
+      return;
+    }
+    const Vec3 df = jx * (particle(dx, j) - particle(dx, i)) + jv * (particle(dv, j) - particle(dv, i));
+    particle(out, i) += df;
+    particle(out, j) -= df;
+  });
+  m_constraints.zero_fixed(out);
+}
+
+void ClothSystem::force_jacobians(ConstVecRef x, ConstVecRef v, bool definite,
+                                  Eigen::SparseMatrix<double>& dfdx,
+                                  Eigen::SparseMatrix<double>& dfdv) const {
+  using Triplet = Eigen::Triplet<double>;
+  std::vector<Triplet> tx, tv;
+  const auto& fixed = m_constraints.mask();
+  auto add_block = [&](std::vector<Triplet>& t, int row, int col, const Mat3& block) {
+    if (fixed[row]) return;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        if (block(a, b) != 0.0) t.emplace_back(3 * row + a, 3 * col + b, block(a, b));
+  };
+  auto add_pair = [&](std::vector<Triplet>& t, int i, int j, const Mat3& block) {
+    add_block(t, i, i, -block);
+    add_block(t, i, j, block);
+    add_block(t, j, i, block);
+    add_block(t, j, j, -block);
+  };
+  for_each_jacobian_block(x, v, definite, [&](int i, int j, const Mat3& jx, const Mat3& jv) {
+    if (j < 0) {
+      add_block(tx, i, i, jx);
+      add_block(tv, i, i, jv);
+    } else {
+      add_pair(tx, i, j, jx);
+      add_pair(tv, i, j, jv);
+    }
+  });
+  const Eigen::Index n3 = 3 * num_particles();
+  dfdx.resize(n3, n3);
+  dfdv.resize(n3, n3);
+  dfdx.setFromTriplets(tx.begin(), tx.end());
+  dfdv.setFromTriplets(tv.begin(), tv.end());
+}
+
+}  // namespace drape

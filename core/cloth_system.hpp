@@ -1,0 +1,87 @@
+#pragma once
+// The cloth-on-dummy model as a constrained ODE (SPEC 5): y = [x; v],
+// y' = [v; M^-1 F(x, v)], fixed particles replaced by their prescribed motion and projected
+// after every step. The model evaluates; it never owns time or steps.
+#include <Eigen/SparseCore>
+#include <memory>
+
+#include "core/cloth.hpp"
+#include "core/constraints.hpp"
+#include "core/dummy.hpp"
+
+namespace drape {
+
+/// Collision parameters of the paper's section 2.3 (SPEC 4).
+struct CollisionParams {
+  double threshold = 0.01;    ///< delta: distance below which the repulsion acts [m]
+  double stiffness = 1000.0;  ///< k_collision [N/m]
+};
+
+/// Forces that are not springs: gravity and collision.
+struct ForceParams {
+  Vec3 gravity = Vec3(0.0, -9.81, 0.0);
+  CollisionParams collision;
+};
+
+/// Energy terms of SPEC 4; total = kinetic + spring + gravity + collision.
+struct EnergyBreakdown {
+  double kinetic = 0.0;
+  double spring = 0.0;
+  double gravity = 0.0;
+  double collision = 0.0;
+  double total() const { return kinetic + spring + gravity + collision; }
+};
+
+/// The constrained cloth ODE: forces, right-hand side, projection, energy and Jacobians.
+class ClothSystem {
+ public:
+  /// `dummy` may be null (no object in the scene).
+  ClothSystem(Cloth cloth, std::shared_ptr<const Dummy> dummy, ForceParams params);
+
+  int num_particles() const { return m_cloth.size(); }
+  /// Length of the state vector, 6N.
+  Eigen::Index size() const { return 6 * static_cast<Eigen::Index>(num_particles()); }
+  const Cloth& cloth() const { return m_cloth; }
+  const Dummy* dummy() const { return m_dummy.get(); }
+  const ForceParams& params() const { return m_params; }
+  double particle_mass() const { return m_cloth.params.particle_mass; }
+  ConstraintSet& constraints() { return m_constraints; }
+  const ConstraintSet& constraints() const { return m_constraints; }
+
+  /// The grid at rest, at zero velocity, projected onto the constraints at time t.
+  Eigen::VectorXd initial_state(double t) const;
+
+  /// Total force F(x, v) on every particle (3N values), fixed particles included.
+  void forces(ConstVecRef x, ConstVecRef v, VecRef f) const;
+  /// M^-1 F for free particles, p''(t) for fixed ones.
+  void acceleration(double t, ConstVecRef x, ConstVecRef v, VecRef a) const;
+  /// y' = [v; a] with fixed rows replaced by [p'(t); p''(t)].
+  void rhs(double t, ConstVecRef y, VecRef y_dot) const;
+  /// Penetration correction (a free particle inside the dummy moves onto its nearest object
+  /// particle and loses its inward normal velocity), then fixed particles onto p(t), p'(t).
+  /// Returns the number of corrected penetrations.
+  int project(double t, VecRef x, VecRef v) const;
+  /// Energy of the state (velocities must be synchronised with positions).
+  EnergyBreakdown energy(ConstVecRef x, ConstVecRef v) const;
+
+  /// out = dF/dx dx + dF/dv dv, with the fixed particles' rows zeroed (their motion is
+  /// prescribed). `definite` clamps compressed springs' transverse stiffness (forces.hpp).
+  void force_jacobian_times(ConstVecRef x, ConstVecRef v, ConstVecRef dx,
+                            ConstVecRef dv, VecRef out, bool definite) const;
+  /// Sparse dF/dx and dF/dv (3N x 3N) with the fixed particles' rows zeroed.
+  void force_jacobians(ConstVecRef x, ConstVecRef v, bool definite,
+                       Eigen::SparseMatrix<double>& dfdx,
+                       Eigen::SparseMatrix<double>& dfdv) const;
+
+ private:
+  template <class Visit>
+  void for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite,
+                               Visit&& visit) const;
+
+  Cloth m_cloth;
+  std::shared_ptr<const Dummy> m_dummy;
+  ForceParams m_params;
+  ConstraintSet m_constraints;
+};
+
+}  // namespace drape

@@ -1,0 +1,81 @@
+#pragma once
+// The object (dummy) model of the paper, section 2.1: particles on horizontal cross-sections,
+// no springs. Section k (k = 0 at the top) has height y_k, centre (cx_k, cz_k) and one radius
+// per angle theta_j = 2*pi*j/points, measured from the front (+z) towards +x. Object particle
+// o = k*points + j sits at (cx_k + rho sin theta_j, y_k, cz_k + rho cos theta_j).
+#include <memory>
+#include <vector>
+
+#include "core/dummy_grid.hpp"
+#include "core/state.hpp"
+
+namespace drape {
+
+/// Heights, centres and radii of a stack of cross-sections: the data every dummy source yields.
+struct DummySections {
+  std::vector<double> y;   ///< height of each section, strictly decreasing (top first)
+  std::vector<double> cx;  ///< section centre x
+  std::vector<double> cz;  ///< section centre z
+  Eigen::MatrixXd radius;  ///< sections x points: radius at theta_j = 2*pi*j/points
+
+  int num_sections() const { return static_cast<int>(y.size()); }
+  int points() const { return static_cast<int>(radius.cols()); }
+};
+
+/// An object particle nearest to a query point, with its Euclidean distance.
+struct NearestObjectParticle {
+  int index = -1;  ///< object particle index, -1 when none qualifies
+  double distance = 0.0;
+};
+
+/// The particle dummy: positions, outward normals, nearest-particle queries, inside test.
+class Dummy {
+ public:
+  explicit Dummy(DummySections sections);
+
+  int num_sections() const { return m_sections.num_sections(); }
+  int points() const { return m_sections.points(); }
+  /// Number of object particles (sections * points).
+  int size() const { return num_sections() * points(); }
+  const DummySections& sections() const { return m_sections; }
+
+  /// All object particle positions, interleaved xyz (3 * size()).
+  const Eigen::VectorXd& positions() const { return m_positions; }
+  Vec3 position(int o) const { return m_positions.segment<3>(3 * o); }
+  /// Outward unit normal of object particle o: (sin theta_j, 0, cos theta_j).
+  Vec3 normal(int o) const { return m_normals.segment<3>(3 * o); }
+  /// Angle theta_j of column j.
+  double angle(int j) const;
+
+  /// Exact nearest object particle to p (Euclidean), never a scan of all particles.
+  NearestObjectParticle nearest(const Vec3& p) const;
+  /// Nearest object particle with distance < radius, or index -1. The collision hot path.
+  NearestObjectParticle nearest_within(const Vec3& p, double radius) const;
+  /// Test oracle: nearest by scanning every object particle.
+  NearestObjectParticle nearest_brute_force(const Vec3& p) const;
+
+  /// Surface radius at height y and angle theta: linear in height between the bracketing
+  /// sections and linear in angle between the bracketing particles of each section.
+  double surface_radius(double y, double theta) const;
+  /// Section centre (cx, cz) interpolated linearly in height.
+  Eigen::Vector2d axis_at(double y) const;
+  /// True when p lies between the top and bottom sections and its horizontal distance from the
+  /// interpolated axis is below the surface radius at its angle (SPEC 4, penetration).
+  bool inside(const Vec3& p) const;
+
+ private:
+  /// Section k with y_k >= y >= y_{k+1} (y clamped to the stack) and the weight t of k + 1.
+  int bracket(double y, double& t) const;
+  /// Radius of section k at angle theta, linear between its two neighbouring particles.
+  double section_radius(int k, double theta) const;
+
+  DummySections m_sections;
+  Eigen::VectorXd m_positions;
+  Eigen::VectorXd m_normals;
+  detail::ParticleGrid m_grid;        // nearest-particle queries
+  Eigen::VectorXd m_min_radius;       // per section: cheap bounds that decide most inside() calls
+  Eigen::VectorXd m_max_radius;
+  double m_sections_per_metre = 0.0;  // first guess of the bracketing section from a height
+};
+
+}  // namespace drape

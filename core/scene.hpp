@@ -1,0 +1,61 @@
+#pragma once
+// A scene file (SPEC 9): the problem data of one run. Solver options (`integrator`) and the hand
+// input (`input`) are kept as validated JSON here and read by their own layers, so that core
+// knows nothing of integrators.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/cloth.hpp"
+#include "core/cloth_system.hpp"
+
+namespace drape {
+
+/// A cloth particle named by its grid coordinates.
+struct GridPoint {
+  int row = 0;
+  int col = 0;
+};
+
+/// Parameters of the paper's manipulations (SPEC 7).
+struct ManipulationParams {
+  double hold_threshold = 0.05;  ///< hand-to-candidate distance that starts a hold [m]
+  bool release_held = true;      ///< `r` frees the held particle(s) ...
+  GridPoint release_pin;         ///< ... or, when release_held is false, this pin
+  int attach_iterations = 100;   ///< steps of dynamics before an attached particle is fixed
+  double map_top = 1.25;         ///< height of row 0 after mapping [m]
+  int map_direction = 1;         ///< +1: columns go towards +x from the centre line
+};
+
+/// What a run writes besides summary.json and state.csv.
+struct OutputOptions {
+  double energy_interval = 0.01;  ///< time between energy.csv rows [s]; 0 = every step
+};
+
+/// One scene: cloth, pins, forces, object, duration, manipulation, input and output.
+struct Scene {
+  std::string file;                ///< the scene file (for messages)
+  std::filesystem::path base_dir;  ///< relative paths in the scene resolve against this
+  ClothParams cloth;
+  std::vector<GridPoint> pins;
+  ForceParams forces;
+  nlohmann::json dummy;       ///< the `dummy` object, null for no object
+  nlohmann::json integrator;  ///< the `integrator` object
+  nlohmann::json input;       ///< the `input` object, null when absent
+  double duration = 0.0;
+  ManipulationParams manipulation;
+  OutputOptions output;
+  nlohmann::json source;  ///< the whole scene as read, overrides applied
+};
+
+/// Applies one `--set key.path=value` override (value parsed as JSON, else a string).
+void apply_override(nlohmann::json& scene, const std::string& assignment);
+/// Parses and validates a scene; throws InputError naming `file` and the field.
+Scene parse_scene(const nlohmann::json& source, const std::string& file,
+                  const std::filesystem::path& base_dir);
+/// Reads a scene file, applies the overrides in order, and parses it.
+Scene load_scene(const std::string& file, const std::vector<std::string>& overrides = {});
+
+}  // namespace drape

@@ -1,0 +1,46 @@
+#include "experiments/run_files.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace drape {
+
+namespace {
+std::ofstream open_for_writing(const std::filesystem::path& file) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+  return out;
+}
+}  // namespace
+
+EnergyWriter::EnergyWriter(const std::filesystem::path& file) : m_out(open_for_writing(file)) {
+  m_out << "t,kinetic,spring,gravity,collision,total\n";
+}
+
+void EnergyWriter::write(double t, const EnergyBreakdown& e) {
+  m_out << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", t, e.kinetic,
+                       e.spring, e.gravity, e.collision, e.total());
+}
+
+void write_state_csv(const std::filesystem::path& file, const ClothSystem& system,
+                     const Eigen::VectorXd& y) {
+  std::ofstream out = open_for_writing(file);
+  out << "index,row,col,x,y,z,vx,vy,vz,fixed\n";
+  const Cloth& cloth = system.cloth();
+  const Eigen::Index n3 = 3 * system.num_particles();
+  for (int i = 0; i < system.num_particles(); ++i) {
+    const Vec3 x = y.segment<3>(3 * i);
+    const Vec3 v = y.segment<3>(n3 + 3 * i);
+    out << fmt::format("{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", i,
+                       cloth.row_of(i), cloth.col_of(i), x.x(), x.y(), x.z(), v.x(), v.y(),
+                       v.z(), system.constraints().is_fixed(i) ? 1 : 0);
+  }
+}
+
+void write_json(const std::filesystem::path& file, const nlohmann::json& value) {
+  std::ofstream out = open_for_writing(file);
+  out << value.dump(2) << "\n";
+}
+
+}  // namespace drape

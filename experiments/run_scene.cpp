@@ -1,0 +1,140 @@
+#include "experiments/run_scene.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "core/dummy_sources.hpp"
+#include "experiments/run_files.hpp"
+#include "integrators/registry.hpp"
+
+namespace drape {
+
+namespace {
+
+/// Stops a run whose state no motion of this scene could reach.
+struct DivergenceCheck {
+  double speed_limit;
+
+  // The fastest physical motion here is a free fall over the whole run plus whatever the
+  // prescribed motions add; a blow-up passes any such bound within a few steps.
+  DivergenceCheck(const Scene& scene)
+      : speed_limit(10.0 + 2.0 * scene.forces.gravity.norm() * scene.duration) {}
+
+  /// An empty string when the state is sound, else the reason.
+  std::string reason(const ClothSystem& system, double t, const Eigen::VectorXd& y) const {
+    if (!y.allFinite()) return "non-finite state";
+    const Eigen::Index n = system.num_particles();
+    const auto v = y.tail(3 * n);
+    double max_speed2 = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) max_speed2 = std::max(max_speed2, v.segment<3>(3 * i).squaredNorm());
+    const double limit = speed_limit + 2.0 * system.constraints().max_speed(t);
+    if (max_speed2 > limit * limit)
+      return fmt::format("runaway: a particle moves at {:.3g} m/s, above the bound {:.3g} m/s",
+                         std::sqrt(max_speed2), limit);
+    return {};
+  }
+};
+
+EnergyBreakdown energy_of(const ClothSystem& system, const Eigen::VectorXd& y) {
+  const Eigen::Index n3 = 3 * system.num_particles();
+  return system.energy(ConstVecMap(y.data(), n3), ConstVecMap(y.data() + n3, n3));
+}
+
+}  // namespace
+
+RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
+  const IntegratorOptions options = read_integrator_options(scene.integrator, scene.file, "integrator");
+  std::shared_ptr<const Dummy> dummy;
+  if (!scene.dummy.is_null())
+    dummy = std::make_shared<const Dummy>(make_dummy(scene.dummy, scene.file, "dummy", scene.base_dir));
+  ClothSystem system(build_cloth(scene.cloth), dummy, scene.forces);
+  for (const GridPoint& pin : scene.pins) {
+    const int i = system.cloth().index(pin.row, pin.col);
+    system.constraints().fix_at(i, system.cloth().rest_positions.segment<3>(3 * i));
+  }
+  Eigen::VectorXd y = system.initial_state(0.0);
+  const Eigen::Index n3 = 3 * system.num_particles();
+  system.project(0.0, VecMap(y.data(), n3), VecMap(y.data() + n3, n3));
+
+  auto integrator = make_integrator(options, system);
+  integrator->reset(0.0, y);
+
+  std::filesystem::create_directories(out_dir);
+  EnergyWriter energy_file(out_dir / "energy.csv");
+  const EnergyBreakdown e0 = energy_of(system, y);
+  energy_file.write(0.0, e0);
+  double drift_max_abs = 0.0;
+  EnergyBreakdown e_last = e0;
+
+  const DivergenceCheck divergence(scene);
+  RunOutcome outcome{"ok", "", exit_ok, {}};
+  const double interval = scene.output.energy_interval;
+  double next_output = interval;
+  const auto wall_start = std::chrono::steady_clock::now();
+  // Times within this of the end count as the end (fixed steps accumulate round-off).
+  const double time_eps = 1e-12 * std::max(1.0, scene.duration);
+  double t = 0.0;
+  while (t < scene.duration - time_eps) {
+    if (integrator->counters().steps >= options.max_steps) {
+      outcome = {"failed", fmt::format("reached integrator.max_steps = {}", options.max_steps),
+                 exit_diverged, {}};
+      break;
+    }
+    const double t_stop = interval > 0.0 ? std::min(next_output, scene.duration) : scene.duration;
+    try {
+      t = integrator->step(t_stop);
+    } catch (const IntegratorFailure& failure) {
+      outcome = {"failed", failure.flag() + ": " + failure.what(), exit_diverged, {}};
+      break;
+    }
+    const std::string why = divergence.reason(system, t, integrator->state());
+    if (!why.empty()) {
+      outcome = {"diverged", why, exit_diverged, {}};
+      break;
+    }
+    if (interval == 0.0 || t >= next_output - time_eps || t >= scene.duration - time_eps) {
+      e_last = energy_of(system, integrator->state());
+      energy_file.write(t, e_last);
+      drift_max_abs = std::max(drift_max_abs, std::abs(e_last.total() - e0.total()));
+      while (interval > 0.0 && next_output <= t + time_eps) next_output += interval;
+    }
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+  const IntegratorCounters& counters = integrator->counters();
+  nlohmann::json summary = {
+      {"status", outcome.status},
+      {"integrator", options.name},
+      {"table", options.table},
+      {"dt", options.dt},
+      {"adaptive", options.adaptive},
+      {"steps", counters.steps},
+      {"sim_time", integrator->time()},
+      {"duration", scene.duration},
+      {"wall_seconds", wall},
+      {"rhs_evals", counters.rhs_evals},
+      {"counters", counters.to_json()},
+      {"particles", system.num_particles()},
+      {"springs", system.cloth().springs.size()},
+      {"object_particles", dummy ? dummy->size() : 0},
+      {"energy_initial", e0.total()},
+      {"energy_final", e_last.total()},
+      {"energy_drift_max_abs", drift_max_abs},
+      {"energy_drift_max_rel", drift_max_abs / std::max(std::abs(e0.total()), 1e-300)},
+      {"events", nlohmann::json::array()},
+      {"integrator_options", to_json(options)},
+      {"scene", scene.source},
+  };
+  if (outcome.status != "ok") {
+    summary["reason"] = outcome.reason;
+    summary["time"] = integrator->time();
+  } else {
+    write_state_csv(out_dir / "state.csv", system, integrator->state());
+  }
+  write_json(out_dir / "summary.json", summary);
+  outcome.summary = std::move(summary);
+  return outcome;
+}
+
+}  // namespace drape

@@ -1,0 +1,32 @@
+#include "integrators/integrator.hpp"
+
+#include <algorithm>
+
+namespace drape {
+
+nlohmann::json IntegratorCounters::to_json() const {
+  return {{"steps", steps},
+          {"attempts", attempts},
+          {"rhs_evals", rhs_evals},
+          {"newton_iters", newton_iters},
+          {"linear_iters", linear_iters},
+          {"jacobian_setups", jacobian_setups},
+          {"error_test_failures", error_test_failures},
+          {"convergence_failures", convergence_failures},
+          {"resets", resets}};
+}
+
+void Integrator::reset(double t, const Eigen::VectorXd& y) {
+  m_t = t;
+  m_y = y;
+  ++m_counters.resets;
+}
+
+double fixed_step_size(double dt, double t, double t_stop) {
+  // A remainder within round-off of dt is taken as one full step, so that dt = 1/30 over 1 s
+  // takes 30 steps, not 30 plus a sliver.
+  const double remaining = t_stop - t;
+  return remaining <= dt * (1.0 + 1e-9) ? remaining : dt;
+}
+
+}  // namespace drape

@@ -1,0 +1,52 @@
+#include "integrators/integrator_options.hpp"
+
+#include "core/json_reader.hpp"
+#include "integrators/registry.hpp"
+
+namespace drape {
+
+IntegratorOptions read_integrator_options(const nlohmann::json& object, const std::string& file,
+                                          const std::string& path) {
+  JsonReader in(object, file, path);
+  IntegratorOptions o;
+  o.name = in.string("name");
+  if (!find_integrator(o.name))
+    throw in.error("name", "unknown integrator '" + o.name + "' (see `drapelab integrators`)");
+  o.adaptive = in.boolean("adaptive", o.adaptive);
+  if (o.adaptive && !find_integrator(o.name)->adaptive)
+    throw in.error("adaptive", "integrator '" + o.name + "' has no adaptive steps");
+  o.dt = o.adaptive ? in.number("dt", 0.0) : in.number("dt");
+  if (!o.adaptive || in.has("dt")) in.positive("dt", o.dt);
+  o.table = in.string("table", o.table);
+  o.rtol = in.positive("rtol", in.number("rtol", o.rtol));
+  o.atol = in.positive("atol", in.number("atol", o.atol));
+  o.max_dt = in.non_negative("max_dt", in.number("max_dt", o.max_dt));
+  o.linear_solver = in.string("linear_solver", o.linear_solver);
+  o.max_newton_iters = in.integer("max_newton_iters", o.max_newton_iters);
+  if (o.max_newton_iters < 1) throw in.error("max_newton_iters", "must be at least 1");
+  o.linear_tolerance = in.positive("linear_tolerance",
+                                   in.number("linear_tolerance", o.linear_tolerance));
+  o.max_linear_iters = in.integer("max_linear_iters", o.max_linear_iters);
+  if (o.max_linear_iters < 1) throw in.error("max_linear_iters", "must be at least 1");
+  o.max_steps = static_cast<long>(in.positive("max_steps", in.number("max_steps", 1e8)));
+  in.finish();
+  validate_integrator_choice(o, file, path);
+  return o;
+}
+
+nlohmann::json to_json(const IntegratorOptions& o) {
+  return {{"name", o.name},
+          {"dt", o.dt},
+          {"adaptive", o.adaptive},
+          {"table", o.table},
+          {"rtol", o.rtol},
+          {"atol", o.atol},
+          {"max_dt", o.max_dt},
+          {"linear_solver", o.linear_solver},
+          {"max_newton_iters", o.max_newton_iters},
+          {"linear_tolerance", o.linear_tolerance},
+          {"max_linear_iters", o.max_linear_iters},
+          {"max_steps", o.max_steps}};
+}
+
+}  // namespace drape

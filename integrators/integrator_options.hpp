@@ -1,0 +1,31 @@
+#pragma once
+// Solver options (the scene's `integrator` object): separate from the problem data so that a
+// run is reproduced from its own output folder.
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace drape {
+
+/// Which method, with which step and tolerances, and how implicit systems are solved.
+struct IntegratorOptions {
+  std::string name;               ///< leapfrog, symplectic-euler, implicit-euler, arkode-...
+  double dt = 0.0;                ///< fixed step, or first step of an adaptive run [s]
+  bool adaptive = false;          ///< error-controlled steps (ARKODE only)
+  std::string table;              ///< ARKODE Butcher table name, "" for the method's default
+  double rtol = 1e-4;             ///< relative tolerance of adaptive runs
+  double atol = 1e-7;             ///< absolute tolerance of adaptive runs
+  double max_dt = 0.0;            ///< largest adaptive step, 0 = unbounded
+  std::string linear_solver = "pcg-reduced";  ///< implicit solves (see docs/integrators.md)
+  int max_newton_iters = 10;      ///< Newton iterations per stage before a failure
+  double linear_tolerance = 1e-8; ///< relative residual of the iterative linear solvers
+  int max_linear_iters = 200;     ///< Krylov / CG iterations per solve
+  long max_steps = 100000000;     ///< safety bound on steps per run
+};
+
+/// Reads and validates an `integrator` object; errors name `file` and `path.key`.
+IntegratorOptions read_integrator_options(const nlohmann::json& object, const std::string& file,
+                                          const std::string& path);
+/// The options as JSON, every key written (reproducibility).
+nlohmann::json to_json(const IntegratorOptions& options);
+
+}  // namespace drape

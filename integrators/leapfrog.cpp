@@ -1,0 +1,34 @@
+#include "integrators/leapfrog.hpp"
+
+namespace drape {
+
+void Leapfrog::reset(double t, const Eigen::VectorXd& y) {
+  Integrator::reset(t, y);
+  m_acceleration.resize(y.size() / 2);
+  m_have_acceleration = false;
+}
+
+double Leapfrog::step(double t_stop) {
+  const double h = fixed_step_size(m_dt, m_t, t_stop);
+  VecMap x = positions(), v = velocities();
+  VecMap a(m_acceleration.data(), m_acceleration.size());
+  if (!m_have_acceleration) {
+    m_system.acceleration(m_t, x, v, a);
+    ++m_counters.rhs_evals;
+  }
+  v += 0.5 * h * a;  // v(n+1/2)
+  x += h * v;        // x(n+1)
+  m_t += h;
+  m_system.project(m_t, x, v);
+  m_system.acceleration(m_t, x, v, a);
+  ++m_counters.rhs_evals;
+  v += 0.5 * h * a;  // v(n+1), synchronised; the next kick continues from here
+  m_system.constraints().project(m_t, x, v);
+  m_have_acceleration = true;
+  m_last_step = h;
+  ++m_counters.steps;
+  ++m_counters.attempts;
+  return m_t;
+}
+
+}  // namespace drape

@@ -1,0 +1,52 @@
+// The strict JSON reader: types, ranges, unknown keys, file errors.
+#include <gtest/gtest.h>
+
+#include "core/json_reader.hpp"
+
+namespace drape {
+namespace {
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(JsonReader, ReadsValuesAndDefaults) {
+  const nlohmann::json j = {{"a", 1.5}, {"n", 3}, {"s", "x"}, {"v", {1, 2, 3}}, {"b", true}};
+  JsonReader in(j, "f.json", "top");
+  EXPECT_EQ(in.number("a"), 1.5);
+  EXPECT_EQ(in.integer("n"), 3);
+  EXPECT_EQ(in.string("s"), "x");
+  EXPECT_EQ(in.vec3("v"), Vec3(1, 2, 3));
+  EXPECT_TRUE(in.boolean("b", false));
+  EXPECT_EQ(in.number("missing", 7.0), 7.0);
+  EXPECT_NO_THROW(in.finish());
+}
+
+TEST(JsonReader, ErrorsNameFileAndFullPath) {
+  const nlohmann::json j = {{"a", "text"}, {"extra", 1}, {"v", {1, 2}}, {"n", 1.5}};
+  JsonReader in(j, "f.json", "cloth");
+  EXPECT_EQ(message_of([&] { in.number("a"); }),
+            "f.json: cloth.a: expected a number, got string");
+  EXPECT_EQ(message_of([&] { in.number("nope"); }), "f.json: cloth.nope: required field is missing");
+  EXPECT_EQ(message_of([&] { in.vec3("v"); }), "f.json: cloth.v: expected 3 numbers [x, y, z]");
+  EXPECT_EQ(message_of([&] { in.integer("n"); }), "f.json: cloth.n: expected an integer, got 1.5");
+  EXPECT_EQ(message_of([&] { in.positive("a", -1.0); }), "f.json: cloth.a: must be positive, got -1.0");
+  EXPECT_EQ(message_of([&] { in.finish(); }), "f.json: cloth.extra: unknown key");
+}
+
+TEST(JsonReader, MissingAndBrokenFilesNameTheFile) {
+  EXPECT_EQ(message_of([] { read_json_file("/nonexistent/scene.json"); }),
+            "/nonexistent/scene.json: cannot open file");
+  const std::string broken = ::testing::TempDir() + "broken.json";
+  std::ofstream(broken) << "{\"cloth\": [1, 2";
+  EXPECT_NE(message_of([&] { read_json_file(broken); }).find(broken + ": not valid JSON"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace drape
