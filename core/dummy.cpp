@@ -1,0 +1,150 @@
+#include "core/dummy.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace drape {
+
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+void check_sections(const DummySections& s) {
+  const int n = s.num_sections();
+  if (n < 2) throw std::invalid_argument("a dummy needs at least 2 sections");
+  if (s.points() < 3) throw std::invalid_argument("a dummy needs at least 3 points per section");
+  if (static_cast<int>(s.cx.size()) != n || static_cast<int>(s.cz.size()) != n ||
+      s.radius.rows() != n)
+    throw std::invalid_argument("dummy sections: y, cx, cz and radius rows differ in length");
+  for (int k = 0; k < n; ++k) {
+    if (!std::isfinite(s.y[k]) || !std::isfinite(s.cx[k]) || !std::isfinite(s.cz[k]))
+      throw std::invalid_argument("dummy section " + std::to_string(k) + " is not finite");
+    if (k > 0 && !(s.y[k] < s.y[k - 1]))
+      throw std::invalid_argument("dummy section heights must strictly decrease (top first)");
+  }
+  if (!s.radius.allFinite() || (s.radius.array() < 0.0).any())
+    throw std::invalid_argument("dummy radii must be finite and non-negative");
+}
+
+}  // namespace
+
+Dummy::Dummy(DummySections sections) : m_sections(std::move(sections)) {
+  check_sections(m_sections);
+  const int n = num_sections();
+  const int m = points();
+  m_positions.resize(3 * size());
+  m_normals.resize(3 * size());
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < m; ++j) {
+      const double s = std::sin(angle(j));
+      const double c = std::cos(angle(j));
+      const double r = m_sections.radius(k, j);
+      const int o = k * m + j;
+      m_positions.segment<3>(3 * o) = Vec3(m_sections.cx[k] + r * s, m_sections.y[k],
+                                           m_sections.cz[k] + r * c);
+      m_normals.segment<3>(3 * o) = Vec3(s, 0.0, c);
+    }
+  m_min_radius = m_sections.radius.rowwise().minCoeff();
+  m_max_radius = m_sections.radius.rowwise().maxCoeff();
+  const double height = m_sections.y.front() - m_sections.y.back();
+  m_sections_per_metre = (n - 1) / height;
+
+  // Cell size from the particle spacing, so that the work per query does not grow with the
+  // resolution: twice the geometric mean of the section spacing and the mean arc between
+  // neighbours puts a few particles in each cell the surface crosses, and a query of the
+  // collision threshold's size reads at most 2 x 2 rows of cells. (Measured on the dress form:
+  // from 1 to 5 mean spacings the cost changes by under 20 %; 2 is at the flat minimum.)
+  const double section_spacing = height / (n - 1);
+  const double arc_spacing = kTwoPi * m_sections.radius.mean() / m;
+  const double cell = 2.0 * (arc_spacing > 0.0 ? std::sqrt(section_spacing * arc_spacing)
+                                               : section_spacing);
+  m_grid = detail::ParticleGrid(m_positions, cell);
+}
+
+double Dummy::angle(int j) const { return kTwoPi * j / points(); }
+
+NearestObjectParticle Dummy::nearest(const Vec3& p) const {
+  const detail::GridHit hit = m_grid.nearest(p);
+  return {hit.index, std::sqrt(hit.distance_squared)};
+}
+
+NearestObjectParticle Dummy::nearest_within(const Vec3& p, double radius) const {
+  const detail::GridHit hit = m_grid.nearest_within(p, radius);
+  if (hit.index < 0) return {};
+  return {hit.index, std::sqrt(hit.distance_squared)};
+}
+
+NearestObjectParticle Dummy::nearest_brute_force(const Vec3& p) const {
+  detail::GridHit best{-1, 0.0};
+  for (int o = 0; o < size(); ++o) {
+    const double d2 = detail::distance_squared(m_positions.data() + 3 * o, p);
+    if (best.index < 0 || d2 < best.distance_squared) best = {o, d2};
+  }
+  return {best.index, std::sqrt(best.distance_squared)};
+}
+
+int Dummy::bracket(double y, double& t) const {
+  const auto& ys = m_sections.y;
+  const int last = num_sections() - 2;
+  if (y >= ys.front()) {
+    t = 0.0;
+    return 0;
+  }
+  if (y <= ys.back()) {
+    t = 1.0;
+    return last;
+  }
+  // Evenly spaced sections (every built-in source after resampling) are hit by the first guess;
+  // the walk corrects it for any other strictly decreasing stack.
+  int k = static_cast<int>((ys.front() - y) * m_sections_per_metre);
+  k = k < 0 ? 0 : (k > last ? last : k);
+  while (k > 0 && y > ys[k]) --k;
+  while (k < last && y < ys[k + 1]) ++k;
+  t = (ys[k] - y) / (ys[k] - ys[k + 1]);
+  return k;
+}
+
+double Dummy::section_radius(int k, double theta) const {
+  const int m = points();
+  double u = theta * (m / kTwoPi);
+  u -= m * std::floor(u / m);  // wrap into [0, m)
+  int j = static_cast<int>(u);
+  if (j >= m) j = m - 1;  // u rounded up to m
+  const double f = u - j;
+  const int j1 = j + 1 == m ? 0 : j + 1;
+  return (1.0 - f) * m_sections.radius(k, j) + f * m_sections.radius(k, j1);
+}
+
+double Dummy::surface_radius(double y, double theta) const {
+  double t = 0.0;
+  const int k = bracket(y, t);
+  return (1.0 - t) * section_radius(k, theta) + t * section_radius(k + 1, theta);
+}
+
+Eigen::Vector2d Dummy::axis_at(double y) const {
+  double t = 0.0;
+  const int k = bracket(y, t);
+  return {(1.0 - t) * m_sections.cx[k] + t * m_sections.cx[k + 1],
+          (1.0 - t) * m_sections.cz[k] + t * m_sections.cz[k + 1]};
+}
+
+bool Dummy::inside(const Vec3& p) const {
+  if (!(p.y() <= m_sections.y.front() && p.y() >= m_sections.y.back())) return false;
+  double t = 0.0;
+  const int k = bracket(p.y(), t);
+  const double dx = p.x() - ((1.0 - t) * m_sections.cx[k] + t * m_sections.cx[k + 1]);
+  const double dz = p.z() - ((1.0 - t) * m_sections.cz[k] + t * m_sections.cz[k + 1]);
+  const double d2 = dx * dx + dz * dz;
+  // The surface radius at any angle lies between the interpolated per-section extremes, which
+  // settles most points without an atan2.
+  const double low = (1.0 - t) * m_min_radius[k] + t * m_min_radius[k + 1];
+  if (d2 < low * low) return true;
+  const double high = (1.0 - t) * m_max_radius[k] + t * m_max_radius[k + 1];
+  if (d2 >= high * high) return false;
+  const double theta = std::atan2(dx, dz);
+  const double r = (1.0 - t) * section_radius(k, theta) + t * section_radius(k + 1, theta);
+  return d2 < r * r;
+}
+
+}  // namespace drape
