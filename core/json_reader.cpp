@@ -117,7 +117,7 @@ nlohmann::json read_json_file(const std::string& file) {
   if (!in) throw InputError(file, "", "cannot open file");
   try {
     return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse errors and out-of-range numbers
     throw InputError(file, "", std::string("not valid JSON: ") + e.what());
   }
 }

@@ -38,6 +38,17 @@ void write_state_csv(const std::filesystem::path& file, const ClothSystem& syste
   }
 }
 
+void write_dummy_csv(const std::filesystem::path& file, const Dummy& dummy) {
+  std::ofstream out = open_for_writing(file);
+  out << "index,section,point,x,y,z,nx,ny,nz\n";
+  for (int o = 0; o < dummy.size(); ++o) {
+    const Vec3 p = dummy.position(o), n = dummy.normal(o);
+    out << fmt::format("{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", o,
+                       o / dummy.points(), o % dummy.points(), p.x(), p.y(), p.z(), n.x(), n.y(),
+                       n.z());
+  }
+}
+
 void write_json(const std::filesystem::path& file, const nlohmann::json& value) {
   std::ofstream out = open_for_writing(file);
   out << value.dump(2) << "\n";

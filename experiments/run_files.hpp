@@ -22,6 +22,8 @@ class EnergyWriter {
 /// state.csv: `index,row,col,x,y,z,vx,vy,vz,fixed` for every cloth particle.
 void write_state_csv(const std::filesystem::path& file, const ClothSystem& system,
                      const Eigen::VectorXd& y);
+/// dummy.csv: `index,section,point,x,y,z,nx,ny,nz` for every object particle.
+void write_dummy_csv(const std::filesystem::path& file, const Dummy& dummy);
 /// Writes JSON with round-trip precision, creating nothing partial on failure.
 void write_json(const std::filesystem::path& file, const nlohmann::json& value);
 

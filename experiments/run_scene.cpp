@@ -4,7 +4,11 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include <optional>
+
 #include "core/dummy_sources.hpp"
+#include "core/input_config.hpp"
+#include "core/manipulations.hpp"
 #include "experiments/run_files.hpp"
 #include "integrators/registry.hpp"
 
@@ -36,9 +40,33 @@ struct DivergenceCheck {
   }
 };
 
+/// hands.csv: what each hand does at the output times (the candidate a viewer colours).
+class HandsWriter {
+ public:
+  explicit HandsWriter(const std::filesystem::path& file) : m_out(file) {
+    if (!m_out) throw std::runtime_error("cannot write " + file.string());
+    m_out << "t,hand,available,x,y,z,candidate,distance,held\n";
+  }
+  void write(double t, const std::vector<HandStatus>& hands) {
+    for (const HandStatus& h : hands)
+      m_out << fmt::format("{:.17g},{},{},{:.17g},{:.17g},{:.17g},{},{:.17g},{}\n", t,
+                           hand_name(h.hand), h.available ? 1 : 0, h.position.x(),
+                           h.position.y(), h.position.z(), h.candidate, h.distance, h.held);
+  }
+
+ private:
+  std::ofstream m_out;
+};
+
 EnergyBreakdown energy_of(const ClothSystem& system, const Eigen::VectorXd& y) {
   const Eigen::Index n3 = 3 * system.num_particles();
   return system.energy(ConstVecMap(y.data(), n3), ConstVecMap(y.data() + n3, n3));
+}
+
+nlohmann::json events_json(const Manipulator& manipulator, const Cloth& cloth) {
+  nlohmann::json events = nlohmann::json::array();
+  for (const ManipulationEvent& e : manipulator.events()) events.push_back(e.to_json(cloth));
+  return events;
 }
 
 }  // namespace
@@ -55,13 +83,25 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
   }
   Eigen::VectorXd y = system.initial_state(0.0);
   const Eigen::Index n3 = 3 * system.num_particles();
-  system.project(0.0, VecMap(y.data(), n3), VecMap(y.data() + n3, n3));
+  system.project(0.0, y.head(n3), y.tail(n3));
+
+  std::optional<HandInput> input;
+  if (!scene.input.is_null())
+    input = load_hand_input(scene.input, scene.file, "input", scene.base_dir);
+  Manipulator manipulator(system, input ? &input->track : nullptr, scene.manipulation);
+  if (auto changed = manipulator.update(0.0, y)) y = std::move(*changed);
 
   auto integrator = make_integrator(options, system);
   integrator->reset(0.0, y);
 
   std::filesystem::create_directories(out_dir);
   EnergyWriter energy_file(out_dir / "energy.csv");
+  if (dummy) write_dummy_csv(out_dir / "dummy.csv", *dummy);
+  std::optional<HandsWriter> hands_file;
+  if (input) {
+    hands_file.emplace(out_dir / "hands.csv");
+    hands_file->write(0.0, manipulator.hands(0.0, y));
+  }
   const EnergyBreakdown e0 = energy_of(system, y);
   energy_file.write(0.0, e0);
   double drift_max_abs = 0.0;
@@ -81,7 +121,8 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
                  exit_diverged, {}};
       break;
     }
-    const double t_stop = interval > 0.0 ? std::min(next_output, scene.duration) : scene.duration;
+    const double t_stop = std::min({interval > 0.0 ? next_output : scene.duration,
+                                    scene.duration, manipulator.next_key_time(t)});
     try {
       t = integrator->step(t_stop);
     } catch (const IntegratorFailure& failure) {
@@ -93,9 +134,11 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
       outcome = {"diverged", why, exit_diverged, {}};
       break;
     }
+    if (auto changed = manipulator.update(t, integrator->state())) integrator->reset(t, *changed);
     if (interval == 0.0 || t >= next_output - time_eps || t >= scene.duration - time_eps) {
       e_last = energy_of(system, integrator->state());
       energy_file.write(t, e_last);
+      if (hands_file) hands_file->write(t, manipulator.hands(t, integrator->state()));
       drift_max_abs = std::max(drift_max_abs, std::abs(e_last.total() - e0.total()));
       while (interval > 0.0 && next_output <= t + time_eps) next_output += interval;
     }
@@ -122,7 +165,7 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
       {"energy_final", e_last.total()},
       {"energy_drift_max_abs", drift_max_abs},
       {"energy_drift_max_rel", drift_max_abs / std::max(std::abs(e0.total()), 1e-300)},
-      {"events", nlohmann::json::array()},
+      {"events", events_json(manipulator, system.cloth())},
       {"integrator_options", to_json(options)},
       {"scene", scene.source},
   };

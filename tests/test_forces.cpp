@@ -2,6 +2,8 @@
 // differences of the forces (forces.hpp).
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <random>
 
 #include "core/forces.hpp"

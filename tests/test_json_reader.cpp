@@ -3,6 +3,9 @@
 
 #include "core/json_reader.hpp"
 
+#include <fstream>
+#include <functional>
+
 namespace drape {
 namespace {
 

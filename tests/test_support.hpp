@@ -1,6 +1,7 @@
 #pragma once
 // Small systems and finite-difference helpers shared by the tests.
 #include <Eigen/Core>
+#include <Eigen/SparseLU>
 #include <functional>
 #include <random>
 
@@ -64,11 +65,48 @@ inline double potential_of(const ClothSystem& s, const Eigen::VectorXd& x) {
   return e.spring + e.gravity + e.collision;
 }
 
+/// The static equilibrium of a pinned cloth, found independently of any integrator: Newton steps
+/// on -dF/dx over the free particles with a backtracking line search on the energy.
+inline Eigen::VectorXd newton_equilibrium(const ClothSystem& s) {
+  Eigen::VectorXd x = s.initial_state(0.0).head(3 * s.num_particles());
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(x.size());
+  const ConstVecMap v(zero.data(), zero.size());
+  for (int iter = 0; iter < 100; ++iter) {
+    Eigen::VectorXd f = forces_of(s, x, zero);
+    s.constraints().zero_fixed(VecMap(f.data(), f.size()));
+    if (f.norm() < 1e-13) break;
+    Eigen::SparseMatrix<double> dfdx, dfdv;
+    // Early iterations use the definite Hessian (always a descent direction), then exact Newton.
+    s.force_jacobians(ConstVecMap(x.data(), x.size()), v, iter < 20, dfdx, dfdv);
+    // Fixed rows of dF/dx are zero: an identity there keeps their step at zero.
+    std::vector<Eigen::Triplet<double>> pinned;
+    for (const int i : s.constraints().fixed_particles())
+      for (int a = 0; a < 3; ++a) pinned.emplace_back(3 * i + a, 3 * i + a, 1.0);
+    Eigen::SparseMatrix<double> identity_on_fixed(x.size(), x.size());
+    identity_on_fixed.setFromTriplets(pinned.begin(), pinned.end());
+    // A flat cloth at rest has no out-of-plane stiffness (the Hessian is singular there): the
+    // first iterations add a small Levenberg-Marquardt shift, the last ones are exact Newton.
+    Eigen::SparseMatrix<double> shift(x.size(), x.size());
+    shift.setIdentity();
+    const double levenberg = iter < 20 ? 1e-3 * s.cloth().params.k_structural : 0.0;
+    const Eigen::SparseMatrix<double> hessian = identity_on_fixed - dfdx + levenberg * shift;
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(hessian);
+    if (lu.info() != Eigen::Success) throw std::runtime_error("newton_equilibrium: singular Hessian");
+    const Eigen::VectorXd step = lu.solve(f);
+    const double e = potential_of(s, x);
+    double alpha = 1.0;
+    while (potential_of(s, x + alpha * step) > e && alpha > 1e-8) alpha *= 0.5;
+    x += alpha * step;
+  }
+  return x;
+}
+
 }  // namespace drape::testing
 
 #include <memory>
 
 #include "integrators/integrator.hpp"
+#include "integrators/leapfrog.hpp"
 
 namespace drape::testing {
 
@@ -113,5 +151,60 @@ inline Eigen::VectorXd shaken_state(const ClothSystem& s) {
   s.constraints().project(0.0, VecMap(y.data(), n3), VecMap(y.data() + n3, n3));
   return y;
 }
+
+/// Runs an integrator from the system's initial state until every velocity is below 1e-10
+/// (or t = 60 s) and returns the positions: the equilibrium a damped run settles on.
+inline Eigen::VectorXd settle(Integrator& method, const ClothSystem& s) {
+  method.reset(0.0, s.initial_state(0.0));
+  const Eigen::Index n3 = 3 * s.num_particles();
+  while (method.time() < 60.0) {
+    method.step(60.0);
+    if (method.state().tail(n3).lpNorm<Eigen::Infinity>() < 1e-10) break;
+  }
+  return method.state().head(n3);
+}
+
+/// The largest leap-frog step that stays bounded over `duration` from state y0, to 1% by
+/// bisection: the stability limit that implicit methods are measured against.
+inline double leapfrog_stability_limit(ClothSystem& s, const Eigen::VectorXd& y0,
+                                       double duration = 0.5) {
+  const Eigen::Index n3 = 3 * s.num_particles();
+  auto stable = [&](double dt) {
+    Leapfrog method(s, dt);
+    method.reset(0.0, y0);
+    while (method.time() < duration - 1e-12) {
+      method.step(duration);
+      // A mode beyond the limit grows by orders of magnitude within a few steps.
+      if (!((method.state().head(n3) - y0.head(n3)).lpNorm<Eigen::Infinity>() < 0.5)) return false;
+    }
+    return true;
+  };
+  double lo = 1e-5, hi = 0.1;
+  while (hi > 1.01 * lo) {
+    const double mid = std::sqrt(lo * hi);
+    (stable(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+/// A fixed particle moving on a horizontal circle around `centre`: p(t) = c + r (cos wt, 0, sin wt).
+class CircleTrajectory final : public Trajectory {
+ public:
+  CircleTrajectory(const Vec3& centre, double radius, double omega)
+      : m_centre(centre), m_radius(radius), m_omega(omega) {}
+  Vec3 position(double t) const override {
+    return m_centre + m_radius * Vec3(std::cos(m_omega * t), 0.0, std::sin(m_omega * t));
+  }
+  Vec3 velocity(double t) const override {
+    return m_radius * m_omega * Vec3(-std::sin(m_omega * t), 0.0, std::cos(m_omega * t));
+  }
+  Vec3 acceleration(double t) const override {
+    return -m_radius * m_omega * m_omega * Vec3(std::cos(m_omega * t), 0.0, std::sin(m_omega * t));
+  }
+
+ private:
+  Vec3 m_centre;
+  double m_radius, m_omega;
+};
 
 }  // namespace drape::testing
