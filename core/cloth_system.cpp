@@ -21,15 +21,24 @@ Eigen::VectorXd ClothSystem::initial_state(double t) const {
 }
 
 void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f) const {
+  forces(x, v, f, ForceSplit::all);
+}
+
+void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit split) const {
+  const bool with_springs = split != ForceSplit::non_springs;
+  const bool with_rest = split != ForceSplit::springs;
   const SpringSet& springs = m_cloth.springs;
   const double c_spring = m_cloth.params.damping_spring;
   const double c_air = m_cloth.params.damping_air;
   const Vec3 weight = particle_mass() * m_params.gravity;
   const int n = num_particles();
 
-  for (int i = 0; i < n; ++i) particle(f, i) = weight - c_air * particle(v, i);
+  if (with_rest)
+    for (int i = 0; i < n; ++i) particle(f, i) = weight - c_air * particle(v, i);
+  else
+    f.setZero();
 
-  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+  for (Eigen::Index e = 0; with_springs && e < springs.size(); ++e) {
     const int i = springs.first[e], j = springs.second[e];
     const Vec3 d = particle(x, j) - particle(x, i);
     const double length = d.norm();
@@ -42,7 +51,7 @@ void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f) const {
     particle(f, j) -= force;
   }
 
-  if (!m_dummy) return;
+  if (!m_dummy || !with_rest) return;
   const double delta = m_params.collision.threshold;
   const double k = m_params.collision.stiffness;
   for (int i = 0; i < n; ++i) {
@@ -63,12 +72,21 @@ void ClothSystem::acceleration(double t, ConstVecRef x, ConstVecRef v,
 }
 
 void ClothSystem::rhs(double t, ConstVecRef y, VecRef y_dot) const {
+  rhs(t, y, y_dot, ForceSplit::all);
+}
+
+void ClothSystem::rhs(double t, ConstVecRef y, VecRef y_dot, ForceSplit split) const {
   const Eigen::Index n3 = 3 * num_particles();
   const ConstVecMap x(y.data(), n3), v(y.data() + n3, n3);
   VecMap x_dot(y_dot.data(), n3), v_dot(y_dot.data() + n3, n3);
-  x_dot = v;
-  forces(x, v, v_dot);
+  forces(x, v, v_dot, split);
   v_dot /= particle_mass();
+  if (split == ForceSplit::non_springs) {
+    x_dot.setZero();
+    m_constraints.zero_fixed(v_dot);
+    return;
+  }
+  x_dot = v;
   m_constraints.apply_to_rhs(t, x_dot, v_dot);
 }
 
@@ -115,11 +133,12 @@ EnergyBreakdown ClothSystem::energy(ConstVecRef x, ConstVecRef v) const {
 // Calls visit(i, j, Jx, Jv) for every pair block: j >= 0 for springs (the pair pattern of
 // forces.hpp), j < 0 for a block acting on particle i alone (dF_i/dx_i, dF_i/dv_i).
 template <class Visit>
-void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v,
-                                          bool definite, Visit&& visit) const {
+void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite,
+                                          ForceSplit split, Visit&& visit) const {
   const SpringSet& springs = m_cloth.springs;
   const double c_spring = m_cloth.params.damping_spring;
-  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+  const bool with_springs = split != ForceSplit::non_springs;
+  for (Eigen::Index e = 0; with_springs && e < springs.size(); ++e) {
     const int i = springs.first[e], j = springs.second[e];
     const Vec3 d = particle(x, j) - particle(x, i);
     Mat3 jx = spring_jacobian(d, springs.stiffness[e], springs.rest[e], definite);
@@ -131,6 +150,7 @@ void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v,
     }
     visit(i, j, jx, jv);
   }
+  if (split == ForceSplit::springs) return;
   const Mat3 air = -m_cloth.params.damping_air * Mat3::Identity();
   const double delta = m_params.collision.threshold;
   const double k = m_params.collision.stiffness;
@@ -149,8 +169,14 @@ void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v,
 void ClothSystem::force_jacobian_times(ConstVecRef x, ConstVecRef v,
                                        ConstVecRef dx, ConstVecRef dv, VecRef out,
                                        bool definite) const {
+  force_jacobian_times(x, v, dx, dv, out, definite, ForceSplit::all);
+}
+
+void ClothSystem::force_jacobian_times(ConstVecRef x, ConstVecRef v, ConstVecRef dx,
+                                       ConstVecRef dv, VecRef out, bool definite,
+                                       ForceSplit split) const {
   out.setZero();
-  for_each_jacobian_block(x, v, definite, [&](int i, int j, const Mat3& jx, const Mat3& jv) {
+  for_each_jacobian_block(x, v, definite, split, [&](int i, int j, const Mat3& jx, const Mat3& jv) {
     if (j < 0) {
       particle(out, i) += jx * particle(dx, i) + jv * particle(dv, i);
       return;
@@ -165,6 +191,12 @@ void ClothSystem::force_jacobian_times(ConstVecRef x, ConstVecRef v,
 void ClothSystem::force_jacobians(ConstVecRef x, ConstVecRef v, bool definite,
                                   Eigen::SparseMatrix<double>& dfdx,
                                   Eigen::SparseMatrix<double>& dfdv) const {
+  force_jacobians(x, v, definite, dfdx, dfdv, ForceSplit::all);
+}
+
+void ClothSystem::force_jacobians(ConstVecRef x, ConstVecRef v, bool definite,
+                                  Eigen::SparseMatrix<double>& dfdx,
+                                  Eigen::SparseMatrix<double>& dfdv, ForceSplit split) const {
   using Triplet = Eigen::Triplet<double>;
   std::vector<Triplet> tx, tv;
   const auto& fixed = m_constraints.mask();
@@ -180,7 +212,7 @@ void ClothSystem::force_jacobians(ConstVecRef x, ConstVecRef v, bool definite,
     add_block(t, j, i, block);
     add_block(t, j, j, -block);
   };
-  for_each_jacobian_block(x, v, definite, [&](int i, int j, const Mat3& jx, const Mat3& jv) {
+  for_each_jacobian_block(x, v, definite, split, [&](int i, int j, const Mat3& jx, const Mat3& jv) {
     if (j < 0) {
       add_block(tx, i, i, jx);
       add_block(tv, i, i, jv);

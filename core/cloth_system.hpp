@@ -32,6 +32,10 @@ struct EnergyBreakdown {
   double total() const { return kinetic + spring + gravity + collision; }
 };
 
+/// Which forces an evaluation includes, for the IMEX splitting of arkode-imex: every force, the
+/// springs (elastic and spring damping), or the rest (gravity, air damping, collision).
+enum class ForceSplit { all, springs, non_springs };
+
 /// The constrained cloth ODE: forces, right-hand side, projection, energy and Jacobians.
 class ClothSystem {
  public:
@@ -53,10 +57,16 @@ class ClothSystem {
 
   /// Total force F(x, v) on every particle (3N values), fixed particles included.
   void forces(ConstVecRef x, ConstVecRef v, VecRef f) const;
+  /// The part of the force that `split` selects; the parts add up to forces().
+  void forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit split) const;
   /// M^-1 F for free particles, p''(t) for fixed ones.
   void acceleration(double t, ConstVecRef x, ConstVecRef v, VecRef a) const;
   /// y' = [v; a] with fixed rows replaced by [p'(t); p''(t)].
   void rhs(double t, ConstVecRef y, VecRef y_dot) const;
+  /// The part of y' that `split` selects; rhs(springs) + rhs(non_springs) = rhs(all). The
+  /// springs part also holds x' = v and the fixed rows [p'(t); p''(t)] (the stiff, implicit part
+  /// of arkode-imex); the non-spring part is [0; M^-1 F_rest] with zero fixed rows.
+  void rhs(double t, ConstVecRef y, VecRef y_dot, ForceSplit split) const;
   /// Penetration correction (a free particle inside the dummy moves onto its nearest object
   /// particle and loses its inward normal velocity), then fixed particles onto p(t), p'(t).
   /// Returns the number of corrected penetrations.
@@ -68,14 +78,21 @@ class ClothSystem {
   /// prescribed). `definite` clamps compressed springs' transverse stiffness (forces.hpp).
   void force_jacobian_times(ConstVecRef x, ConstVecRef v, ConstVecRef dx,
                             ConstVecRef dv, VecRef out, bool definite) const;
+  /// The same for the part of the force that `split` selects.
+  void force_jacobian_times(ConstVecRef x, ConstVecRef v, ConstVecRef dx,
+                            ConstVecRef dv, VecRef out, bool definite, ForceSplit split) const;
   /// Sparse dF/dx and dF/dv (3N x 3N) with the fixed particles' rows zeroed.
   void force_jacobians(ConstVecRef x, ConstVecRef v, bool definite,
                        Eigen::SparseMatrix<double>& dfdx,
                        Eigen::SparseMatrix<double>& dfdv) const;
+  /// The same for the part of the force that `split` selects.
+  void force_jacobians(ConstVecRef x, ConstVecRef v, bool definite,
+                       Eigen::SparseMatrix<double>& dfdx, Eigen::SparseMatrix<double>& dfdv,
+                       ForceSplit split) const;
 
  private:
   template <class Visit>
-  void for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite,
+  void for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite, ForceSplit split,
                                Visit&& visit) const;
 
   Cloth m_cloth;

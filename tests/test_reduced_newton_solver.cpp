@@ -1,0 +1,74 @@
+// The reduced 3N solve of (I - gamma J) z = r against a dense solve of the full 6N system.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "core/dummy.hpp"
+#include "integrators/reduced_newton_solver.hpp"
+#include "test_support.hpp"
+
+namespace drape {
+namespace {
+
+// I - gamma J with J = [0 I; M^-1 K  M^-1 D] on the free rows and zero fixed rows, from the
+// same definite Jacobians the solver uses.
+Eigen::MatrixXd dense_newton_matrix(const ClothSystem& s, const Eigen::VectorXd& y, double gamma,
+                                    ForceSplit split) {
+  const Eigen::Index n3 = 3 * s.num_particles();
+  Eigen::SparseMatrix<double> dfdx, dfdv;
+  s.force_jacobians(y.head(n3), y.tail(n3), true, dfdx, dfdv, split);
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(2 * n3, 2 * n3);
+  j.block(0, n3, n3, n3).setIdentity();
+  for (const int i : s.constraints().fixed_particles()) j.block(3 * i, n3, 3, n3).setZero();
+  j.block(n3, 0, n3, n3) = Eigen::MatrixXd(dfdx) / s.particle_mass();
+  j.block(n3, n3, n3, n3) = Eigen::MatrixXd(dfdv) / s.particle_mass();
+  return Eigen::MatrixXd::Identity(2 * n3, 2 * n3) - gamma * j;
+}
+
+TEST(ReducedNewtonSolver, MatchesADenseSolveOfTheFullSystem) {
+  for (const ForceSplit split : {ForceSplit::all, ForceSplit::springs}) {
+    for (const ReducedSolve method : {ReducedSolve::conjugate_gradients, ReducedSolve::sparse_ldlt}) {
+      auto s = testing::pinned_test_cloth(0.05, 0.01);
+      const Eigen::Index n3 = 3 * s->num_particles();
+      Eigen::VectorXd y = testing::jitter(s->initial_state(0.0), 0.003, 7);
+      const double gamma = 0.02;
+      const Eigen::VectorXd r = testing::jitter(Eigen::VectorXd::Zero(2 * n3), 1.0, 8);
+      ReducedNewtonSolver solver(*s, method, split, 1e-13, 500);
+      solver.update(y.head(n3), y.tail(n3), gamma);
+      Eigen::VectorXd z(2 * n3);
+      ASSERT_TRUE(solver.solve(r, z));
+      const Eigen::VectorXd expected =
+          dense_newton_matrix(*s, y, gamma, split).partialPivLu().solve(r);
+      EXPECT_LT((z - expected).norm(), 1e-10 * expected.norm());
+      // A fixed particle's rows are the identity.
+      EXPECT_EQ(z.segment<3>(0), r.segment<3>(0));
+      EXPECT_EQ(z.segment<3>(n3), r.segment<3>(n3));
+    }
+  }
+}
+
+TEST(ReducedNewtonSolver, NewGammaReusesTheJacobian) {
+  auto s = testing::pinned_test_cloth(0.05, 0.01);
+  const Eigen::Index n3 = 3 * s->num_particles();
+  const Eigen::VectorXd y = testing::jitter(s->initial_state(0.0), 0.003, 9);
+  const Eigen::VectorXd r = testing::jitter(Eigen::VectorXd::Zero(2 * n3), 1.0, 10);
+  ReducedNewtonSolver solver(*s, ReducedSolve::sparse_ldlt, ForceSplit::all, 1e-13, 500);
+  EXPECT_FALSE(solver.has_jacobian());
+  solver.update(y.head(n3), y.tail(n3), 0.01);
+  solver.set_gamma(0.05);
+  Eigen::VectorXd z(2 * n3);
+  ASSERT_TRUE(solver.solve(r, z));
+  const Eigen::VectorXd expected = dense_newton_matrix(*s, y, 0.05, ForceSplit::all).partialPivLu().solve(r);
+  EXPECT_LT((z - expected).norm(), 1e-10 * expected.norm());
+  solver.invalidate();
+  EXPECT_FALSE(solver.has_jacobian());
+}
+
+TEST(ReducedNewtonSolver, LinearSolverNames) {
+  EXPECT_EQ(reduced_solve_named("pcg-reduced"), ReducedSolve::conjugate_gradients);
+  EXPECT_EQ(reduced_solve_named("sparse-direct"), ReducedSolve::sparse_ldlt);
+  EXPECT_FALSE(reduced_solve_named("klu"));
+}
+
+}  // namespace
+}  // namespace drape
