@@ -104,6 +104,8 @@ OutputOptions read_output(JsonReader in) {
   OutputOptions o;
   o.energy_interval =
       in.non_negative("energy_interval", in.number("energy_interval", o.energy_interval));
+  o.trace_interval = in.non_negative("trace_interval", in.number("trace_interval", 0.0));
+  o.vtk_interval = in.non_negative("vtk_interval", in.number("vtk_interval", 0.0));
   in.finish();
   return o;
 }

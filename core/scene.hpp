@@ -32,6 +32,8 @@ struct ManipulationParams {
 /// What a run writes besides summary.json and state.csv.
 struct OutputOptions {
   double energy_interval = 0.01;  ///< time between energy.csv rows [s]; 0 = every step
+  double trace_interval = 0.0;    ///< time between trace.csv frames [s]; 0 = no trace.csv
+  double vtk_interval = 0.0;      ///< time between VTK frames [s]; 0 = no frames
 };
 
 /// One scene: cloth, pins, forces, object, duration, manipulation, input and output.

@@ -9,6 +9,7 @@
 #include "core/dummy_sources.hpp"
 #include "core/input_config.hpp"
 #include "core/manipulations.hpp"
+#include "experiments/frame_recorder.hpp"
 #include "experiments/run_files.hpp"
 #include "integrators/registry.hpp"
 
@@ -104,6 +105,8 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
   }
   const EnergyBreakdown e0 = energy_of(system, y);
   energy_file.write(0.0, e0);
+  FrameRecorder frames(scene.output, out_dir, system);
+  frames.record(0.0, y, true);
   double drift_max_abs = 0.0;
   EnergyBreakdown e_last = e0;
 
@@ -134,7 +137,9 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
       outcome = {"diverged", why, exit_diverged, {}};
       break;
     }
-    if (auto changed = manipulator.update(t, integrator->state())) integrator->reset(t, *changed);
+    const auto changed = manipulator.update(t, integrator->state());
+    if (changed) integrator->reset(t, *changed);
+    frames.record(t, integrator->state(), changed.has_value());
     if (interval == 0.0 || t >= next_output - time_eps || t >= scene.duration - time_eps) {
       e_last = energy_of(system, integrator->state());
       energy_file.write(t, e_last);
