@@ -1,0 +1,153 @@
+#!/usr/bin/env python3
+"""Metrics, plots and an HTML report of an experiment folder.
+
+Usage: report.py DIR
+Reads DIR/results.json and the files of every run (docs/outputs.md); writes DIR/metrics.csv and
+DIR/metrics.json (the results table plus the metrics of docs/analysis.md) and DIR/report/:
+report.html with its figures as PNG and SVG. `drapelab report DIR` runs this script.
+"""
+import argparse
+import csv
+import html
+import json
+import math
+import sys
+from pathlib import Path
+
+from drapeanalysis import metrics, plots, runfiles
+
+# Columns of the report's table besides the parameters; every column is in metrics.csv.
+TABLE_COLUMNS = (
+    "status", "steps", "rhs_evals", "wall_seconds", "energy_drift_max_rel",
+    "energy_drift_final_rel", "energy_drift_exponent", "attach_error_mean", "vibration_rms_final",
+    "settle_time", "contact_switch_rate_final", "hand_jitter_rms_final", "mapping_gap_mean_final",
+    "spring_strain_max_final", "error_rms", "stable_value",
+)
+
+
+def add_metrics(directory, results):
+    """Every row of the results table with the analysis metrics of its run added."""
+    rows = results["runs"]
+    by_id = {row["id"]: row for row in rows}
+    out, windows = [], {}
+    for row in rows:
+        extra, run_windows = metrics.run_metrics(directory, row, by_id)
+        out.append({**row, **extra})
+        if run_windows:
+            windows[row["id"]] = run_windows
+    return out, windows
+
+
+def clean(value):
+    """JSON has no nan: missing metrics become null."""
+    return None if isinstance(value, float) and not math.isfinite(value) else value
+
+
+def write_metrics(directory, results, rows, windows):
+    """DIR/metrics.json and DIR/metrics.csv: the full table, one row per run."""
+    columns = list(results["columns"])
+    for row in rows:
+        columns += [key for key in row if key not in columns]
+    doc = {key: results[key] for key in ("name", "question", "metrics", "parameters", "plan_size")}
+    doc.update(columns=columns, runs=[{k: clean(v) for k, v in row.items()} for row in rows],
+               vibration_windows=windows)
+    with open(directory / "metrics.json", "w") as f:
+        json.dump(doc, f, indent=1, default=clean)
+    with open(directory / "metrics.csv", "w", newline="") as f:
+        writer = csv.writer(f)
+        writer.writerow(columns)
+        for row in rows:
+            writer.writerow(["" if clean(row.get(c)) is None else cell(row.get(c)) for c in columns])
+
+
+def cell(value):
+    """A CSV or HTML cell: JSON for lists and objects, repr precision for floats."""
+    if isinstance(value, (list, dict)):
+        return json.dumps(value)
+    if isinstance(value, bool):
+        return str(value).lower()
+    return value
+
+
+def html_table(rows, parameters):
+    """The results as an HTML table: id, parameters, the main metrics present."""
+    present = [c for c in TABLE_COLUMNS if any(clean(r.get(c)) not in (None, "") for r in rows)]
+    columns = ["id"] + list(parameters) + present
+    head = "".join(f"<th>{html.escape(c)}</th>" for c in columns)
+    body = []
+    for row in rows:
+        cells = []
+        for c in columns:
+            value = clean(row.get(c))
+            text = "" if value is None else (f"{value:.4g}" if isinstance(value, float) else str(cell(value)))
+            cells.append(f"<td>{html.escape(text)}</td>")
+        body.append("<tr>" + "".join(cells) + "</tr>")
+    return f"<table><tr>{head}</tr>{''.join(body)}</table>"
+
+
+CAPTIONS = {
+    "energy_vs_time": "Relative energy error against time, one panel per integrator.",
+    "work_precision": "RMS error of the final positions against the reference run, against "
+                      "right-hand-side evaluations and wall time.",
+    "attach_error_vs_iterations": "Attach error against attach_iterations.",
+    "vibration_vs_dt": "High-frequency RMS motion of the free cloth particles over the last "
+                       "window of the run, against the step size.",
+    "stable_dt": "Largest stable step found by bisection.",
+}
+
+
+def make_figures(directory, out_dir, rows, parameters):
+    """Every figure the table supports, as (stem, caption)."""
+    figures = [
+        ("energy_vs_time", plots.energy_vs_time(directory, out_dir, rows, parameters)),
+        ("work_precision", plots.work_precision(out_dir, rows, parameters)),
+        ("attach_error_vs_iterations", plots.line_plot(
+            out_dir, "attach_error_vs_iterations", rows, parameters, "manipulation.attach_iterations",
+            "attach_error_mean", "attach iterations", "attach error [m]")),
+        ("vibration_vs_dt", plots.line_plot(
+            out_dir, "vibration_vs_dt", rows, parameters, "integrator.dt", "vibration_rms_final",
+            "dt [s]", "vibration RMS [m]")),
+        ("stable_dt", plots.stable_dt(out_dir, rows, parameters)),
+    ]
+    out = [(stem, CAPTIONS[name]) for name, stem in figures if stem]
+    out += [(stem, "Cloth on the object at every event and at the end: front (x-y) and side (z-y) views; "
+                   "fixed particles red.") for stem in plots.snapshots(directory, out_dir, rows)]
+    return out
+
+
+def write_html(out_dir, results, rows, figures):
+    """report.html: the question, the figures (PNG, linked to SVG), the table."""
+    parts = [f"<h1>{html.escape(results['name'])}</h1>",
+             f"<p><b>Question.</b> {html.escape(results.get('question') or '')}</p>"]
+    for stem, caption in figures:
+        parts.append(f'<figure><a href="{stem}.svg"><img src="{stem}.png"></a>'
+                     f"<figcaption>{html.escape(caption)}</figcaption></figure>")
+    parts.append("<h2>Runs</h2>" + html_table(rows, results["parameters"]))
+    parts.append("<p>Every parameter and metric: <a href='../metrics.csv'>metrics.csv</a>, "
+                 "<a href='../metrics.json'>metrics.json</a>. Metrics: docs/analysis.md.</p>")
+    style = ("body{font-family:sans-serif;margin:2em;max-width:80em}img{max-width:100%}"
+             "table{border-collapse:collapse;font-size:80%}td,th{border:1px solid #ccc;padding:2px 5px}"
+             "figure{margin:1em 0}")
+    page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{html.escape(results['name'])}"
+            f"</title><style>{style}</style></head><body>{''.join(parts)}</body></html>\n")
+    (out_dir / "report.html").write_text(page)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("directory", type=Path)
+    args = parser.parse_args()
+    if not (args.directory / "results.json").exists():
+        sys.exit(f"{args.directory}: no results.json (run `drapelab experiment` or `drapelab merge` first)")
+    results = runfiles.load_experiment(args.directory)
+    rows, windows = add_metrics(args.directory, results)
+    write_metrics(args.directory, results, rows, windows)
+    out_dir = args.directory / "report"
+    out_dir.mkdir(exist_ok=True)
+    figures = make_figures(args.directory, out_dir, rows, results["parameters"])
+    write_html(out_dir, results, rows, figures)
+    print(out_dir / "report.html")
+
+
+if __name__ == "__main__":
+    main()
