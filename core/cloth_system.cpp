@@ -9,6 +9,7 @@ namespace drape {
 ClothSystem::ClothSystem(Cloth cloth, std::shared_ptr<const Dummy> dummy, ForceParams params)
     : m_cloth(std::move(cloth)),
       m_dummy(std::move(dummy)),
+      m_contacts(m_dummy, params.collision.threshold, m_cloth.size()),
       m_params(params),
       m_constraints(m_cloth.size()) {}
 
@@ -40,13 +41,9 @@ void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit spli
 
   for (Eigen::Index e = 0; with_springs && e < springs.size(); ++e) {
     const int i = springs.first[e], j = springs.second[e];
-    const Vec3 d = particle(x, j) - particle(x, i);
-    const double length = d.norm();
-    if (length < degenerate_length) continue;
-    const Vec3 u = d / length;
-    const double magnitude = springs.stiffness[e] * (length - springs.rest[e]) +
-                             c_spring * (particle(v, j) - particle(v, i)).dot(u);
-    const Vec3 force = magnitude * u;
+    const Vec3 force = spring_pair_force(particle(x, j) - particle(x, i),
+                                         particle(v, j) - particle(v, i), springs.stiffness[e],
+                                         springs.rest[e], c_spring);
     particle(f, i) += force;
     particle(f, j) -= force;
   }
@@ -56,7 +53,7 @@ void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit spli
   const double k = m_params.collision.stiffness;
   for (int i = 0; i < n; ++i) {
     const Vec3 xi = particle(x, i);
-    const NearestObjectParticle hit = m_dummy->nearest_within(xi, delta);
+    const NearestObjectParticle hit = m_contacts.nearest(i, xi);
     if (hit.index < 0) continue;
     particle(f, i) += collision_force(xi - m_dummy->position(hit.index), m_dummy->normal(hit.index),
                                       k, delta);
@@ -121,7 +118,7 @@ EnergyBreakdown ClothSystem::energy(ConstVecRef x, ConstVecRef v) const {
     const double delta = m_params.collision.threshold;
     for (int i = 0; i < num_particles(); ++i) {
       const Vec3 xi = particle(x, i);
-      const NearestObjectParticle hit = m_dummy->nearest_within(xi, delta);
+      const NearestObjectParticle hit = m_contacts.nearest(i, xi);
       if (hit.index >= 0)
         e.collision += collision_energy(xi - m_dummy->position(hit.index),
                                         m_params.collision.stiffness, delta);
@@ -158,7 +155,7 @@ void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool def
     Mat3 jx = Mat3::Zero();
     if (m_dummy) {
       const Vec3 xi = particle(x, i);
-      const NearestObjectParticle hit = m_dummy->nearest_within(xi, delta);
+      const NearestObjectParticle hit = m_contacts.nearest(i, xi);
       if (hit.index >= 0)
         jx = collision_jacobian(xi - m_dummy->position(hit.index), k, delta, definite);
     }

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "core/cloth.hpp"
+#include "core/collision.hpp"
 #include "core/constraints.hpp"
 #include "core/dummy.hpp"
 
@@ -97,6 +98,7 @@ class ClothSystem {
 
   Cloth m_cloth;
   std::shared_ptr<const Dummy> m_dummy;
+  ContactFinder m_contacts;
   ForceParams m_params;
   ConstraintSet m_constraints;
 };

@@ -1,5 +1,6 @@
 #include "core/dummy.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -60,6 +61,12 @@ Dummy::Dummy(DummySections sections) : m_sections(std::move(sections)) {
   const double cell = 2.0 * (arc_spacing > 0.0 ? std::sqrt(section_spacing * arc_spacing)
                                                : section_spacing);
   m_grid = detail::ParticleGrid(m_positions, cell);
+}
+
+void Dummy::particles_within(const Vec3& p, double radius, std::vector<int>& out) const {
+  out.clear();
+  m_grid.for_each_within(p, radius, [&](int o) { out.push_back(o); });
+  std::sort(out.begin(), out.end());
 }
 
 double Dummy::angle(int j) const { return kTwoPi * j / points(); }

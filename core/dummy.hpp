@@ -51,6 +51,8 @@ class Dummy {
   NearestObjectParticle nearest(const Vec3& p) const;
   /// Nearest object particle with distance < radius, or index -1. The collision hot path.
   NearestObjectParticle nearest_within(const Vec3& p, double radius) const;
+  /// Indices of every object particle at distance < radius from p, ascending.
+  void particles_within(const Vec3& p, double radius, std::vector<int>& out) const;
   /// Test oracle: nearest by scanning every object particle.
   NearestObjectParticle nearest_brute_force(const Vec3& p) const;
 

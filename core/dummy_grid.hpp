@@ -42,6 +42,9 @@ class ParticleGrid {
   GridHit nearest(const Vec3& p) const;
   /// Exact nearest point with distance < radius (ties to the lowest index), or index -1.
   GridHit nearest_within(const Vec3& p, double radius) const;
+  /// Calls visit(index) for every point at distance < radius from p, in no particular order.
+  template <class Visit>
+  void for_each_within(const Vec3& p, double radius, Visit&& visit) const;
 
  private:
   int cell_coord(double x, int axis) const;
@@ -60,5 +63,21 @@ class ParticleGrid {
   std::vector<int> m_cell_particle;      // particle indices sorted by cell
   std::vector<double> m_cell_positions;  // xyz of m_cell_particle, same order
 };
+
+template <class Visit>
+void ParticleGrid::for_each_within(const Vec3& p, double radius, Visit&& visit) const {
+  const double r2 = radius * radius;
+  const int x0 = cell_coord(p.x() - radius, 0), x1 = cell_coord(p.x() + radius, 0);
+  const int y0 = cell_coord(p.y() - radius, 1), y1 = cell_coord(p.y() + radius, 1);
+  const int z0 = cell_coord(p.z() - radius, 2), z1 = cell_coord(p.z() + radius, 2);
+  for (int iz = z0; iz <= z1; ++iz)
+    for (int iy = y0; iy <= y1; ++iy) {
+      const int first = cell_id(x0, iy, iz);
+      const int end = m_cell_start[first + (x1 - x0) + 1];
+      for (int s = m_cell_start[first]; s < end; ++s)
+        if (distance_squared(&m_cell_positions[3 * static_cast<std::size_t>(s)], p) < r2)
+          visit(m_cell_particle[s]);
+    }
+}
 
 }  // namespace drape::detail

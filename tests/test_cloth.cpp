@@ -56,3 +56,26 @@ TEST(Cloth, ZeroStiffnessFamilyHasNoSprings) {
 
 }  // namespace
 }  // namespace drape
+
+namespace drape {
+namespace {
+
+TEST(Cloth, SpringsComeInClassesOfDisjointPairs) {
+  // The force loop relies on it: within a class no particle appears twice.
+  const Cloth cloth = build_cloth(testing::small_cloth(7, 9));
+  std::vector<int> last_class(cloth.size(), -1);
+  int classes = 0;
+  std::vector<bool> used(cloth.size(), false);
+  for (Eigen::Index e = 0; e < cloth.springs.size(); ++e) {
+    const int i = cloth.springs.first[e], j = cloth.springs.second[e];
+    if (used[i] || used[j]) {  // a new class starts here
+      std::fill(used.begin(), used.end(), false);
+      ++classes;
+    }
+    used[i] = used[j] = true;
+  }
+  EXPECT_EQ(classes + 1, 12) << "two classes per offset, six offsets";
+}
+
+}  // namespace
+}  // namespace drape

@@ -90,6 +90,16 @@ TEST(DampingKernel, DissipatesAndOpposesRelativeMotionAlongTheSpring) {
   EXPECT_GT(damping_force(Vec3(1, 0, 0), Vec3(2, 0, 0), 0.1).x(), 0.0);
 }
 
+TEST(SpringKernel, FusedPairForceIsElasticPlusDamping) {
+  std::mt19937 rng(6);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec3 d = random_vec(rng, 0.05), w = random_vec(rng, 1.0);
+    const Vec3 expected = spring_force(d, 30.0, 0.02) + damping_force(d, w, 0.2);
+    EXPECT_LT((spring_pair_force(d, w, 30.0, 0.02, 0.2) - expected).norm(), 1e-14 * (1.0 + expected.norm()));
+  }
+  EXPECT_TRUE(spring_pair_force(Vec3::Zero(), Vec3::Ones(), 30.0, 0.02, 0.2).isZero());
+}
+
 TEST(DampingKernel, JacobiansMatchForceDifferences) {
   std::mt19937 rng(4);
   for (int trial = 0; trial < 100; ++trial) {

@@ -23,7 +23,7 @@ void report_per_particle(benchmark::State& state, int particles) {
 
 void BM_Forces(benchmark::State& state) {
   Eigen::VectorXd y;
-  auto system = draped_cloth(static_cast<int>(state.range(0)), y);
+  auto system = draped_cloth(static_cast<int>(state.range(0)), y, state.range(1) != 0);
   const Eigen::Index n3 = 3 * system->num_particles();
   Eigen::VectorXd f(n3);
   for (auto _ : state) {
@@ -32,7 +32,8 @@ void BM_Forces(benchmark::State& state) {
   }
   report_per_particle(state, system->num_particles());
 }
-BENCHMARK(BM_Forces)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMicrosecond);
+// Second argument: 1 with the dress form (collisions), 0 springs, gravity and damping alone.
+BENCHMARK(BM_Forces)->ArgsProduct({{32, 64, 128}, {1, 0}})->Unit(benchmark::kMicrosecond);
 
 void BM_LeapfrogStep(benchmark::State& state) {
   Eigen::VectorXd y;

@@ -20,7 +20,8 @@ inline const std::shared_ptr<const Dummy>& dress_form() {
 
 /// An n x n cloth wrapped around the dress form from the shoulders down, every particle half a
 /// threshold outside the surface: the draped state, where every collision query finds contact.
-inline std::unique_ptr<ClothSystem> draped_cloth(int n, Eigen::VectorXd& y) {
+inline std::unique_ptr<ClothSystem> draped_cloth(int n, Eigen::VectorXd& y,
+                                                 bool with_dummy = true) {
   const Dummy& dummy = *dress_form();
   ClothParams p;
   p.rows = p.cols = n;
@@ -33,7 +34,7 @@ inline std::unique_ptr<ClothSystem> draped_cloth(int n, Eigen::VectorXd& y) {
   p.origin = Vec3(0.0, 1.3, 0.2);
   ForceParams forces;
   forces.collision = {0.01, 1000.0};
-  auto system = std::make_unique<ClothSystem>(build_cloth(p), dress_form(), forces);
+  auto system = std::make_unique<ClothSystem>(build_cloth(p), with_dummy ? dress_form() : nullptr, forces);
   y = Eigen::VectorXd::Zero(system->size());
   const double y_top = dummy.sections().y.front() - 0.02;
   for (int r = 0; r < n; ++r)
