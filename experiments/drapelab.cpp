@@ -5,7 +5,9 @@
 #include <iostream>
 
 #include "core/input_error.hpp"
+#include "core/recording.hpp"
 #include "core/scene.hpp"
+#include "experiments/experiment_cli.hpp"
 #include "experiments/run_scene.hpp"
 #include "integrators/registry.hpp"
 
@@ -54,6 +56,14 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("integrators", "list integrators and ARKODE tables with their orders");
 
+  std::string convert_in, convert_out;
+  auto* convert = app.add_subcommand(
+      "convert", "convert a hand recording (Kinect v2 CSV, NTU .skeleton, drapelab) to drapelab JSON Lines");
+  convert->add_option("in", convert_in, "recording to read")->required();
+  convert->add_option("out", convert_out, "drapelab recording (.jsonl) to write")->required();
+
+  const drape::ExperimentCommands experiment_commands(app);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -63,6 +73,11 @@ int main(int argc, char** argv) {
 
   try {
     if (run->parsed()) return run_command(scene_file, out_dir, overrides);
+    if (convert->parsed()) {
+      drape::convert_recording(convert_in, convert_out);
+      return drape::exit_ok;
+    }
+    if (const int code = experiment_commands.dispatch(); code >= 0) return code;
     return list_integrators();
   } catch (const drape::InputError& e) {
     std::cerr << "drapelab: error: " << e.what() << "\n";
