@@ -6,6 +6,7 @@
 
 #include "core/dress_form.hpp"
 #include "core/json_reader.hpp"
+#include "core/mesh_sections.hpp"
 
 namespace drape {
 
@@ -24,11 +25,21 @@ struct Resolution {
 /// Where relative paths of a source resolve.
 struct SourceContext {
   std::filesystem::path base_dir;
+
+  std::filesystem::path resolve(const std::filesystem::path& name) const {
+    return name.is_absolute() ? name : base_dir / name;
+  }
 };
 
 using SourceReader = DummySections (*)(JsonReader&, const std::string& key, const Resolution&,
                                        const SourceContext&);
 using BuiltinReader = DummySections (*)(JsonReader&, const Resolution&);
+
+void require_above(const JsonReader& reader, double y_top, double y_bottom) {
+  if (!(y_top > y_bottom))
+    throw reader.error("y_top", "must be above y_bottom (" + nlohmann::json(y_top).dump() +
+                                    " <= " + nlohmann::json(y_bottom).dump() + ")");
+}
 
 DummySections read_dress_form(JsonReader&, const Resolution& res) {
   return dress_form_sections(res.sections, res.points);
@@ -41,9 +52,7 @@ DummySections read_cylinder(JsonReader& reader, const Resolution& res) {
   if (center.size() != 2) throw reader.error("center", "expected 2 numbers [cx, cz]");
   const double y_top = reader.number("y_top");
   const double y_bottom = reader.number("y_bottom");
-  if (!(y_top > y_bottom))
-    throw reader.error("y_top", "must be above y_bottom (" + nlohmann::json(y_top).dump() +
-                                    " <= " + nlohmann::json(y_bottom).dump() + ")");
+  require_above(reader, y_top, y_bottom);
   return cylinder_sections(radius, center[0], center[1], y_top, y_bottom, res.sections,
                            res.points);
 }
@@ -74,8 +83,7 @@ DummySections read_builtin(JsonReader& reader, const std::string& key, const Res
 
 DummySections read_file_source(JsonReader& reader, const std::string& key,
                                const Resolution& res, const SourceContext& context) {
-  const std::filesystem::path name = reader.string(key);
-  const std::filesystem::path path = name.is_absolute() ? name : context.base_dir / name;
+  const std::filesystem::path path = context.resolve(reader.string(key));
   // The scene's field names the problem first; the sections file's own field follows.
   try {
     return resample_sections(read_sections_file(path.string()), res.sections, res.points);
@@ -84,11 +92,42 @@ DummySections read_file_source(JsonReader& reader, const std::string& key,
   }
 }
 
-// The keys that select a source; the default (no key) is the dress form. The mesh source of
-// SPEC 3 is one more row here.
+DummySections read_mesh_source(JsonReader& reader, const std::string& key,
+                               const Resolution& res, const SourceContext& context) {
+  const double unit = reader.positive("unit", reader.number("unit", 1.0));
+  const std::filesystem::path path = context.resolve(reader.string(key));
+  // As for sections files: the scene's field first, then the mesh file's own message.
+  TriangleMesh mesh;
+  try {
+    mesh = read_obj_mesh(path.string(), unit);
+  } catch (const InputError& e) {
+    throw reader.error(key, e.what());
+  }
+  const HeightRange fallback = default_slice_range(mesh, res.sections);
+  const double y_top = reader.number("y_top", fallback.top);
+  const double y_bottom = reader.number("y_bottom", fallback.bottom);
+  require_above(reader, y_top, y_bottom);
+  // A plane at or beyond the mesh's extent cuts nothing or only a tip: name the field, not the
+  // first empty slice.
+  const HeightRange extent = vertical_extent(mesh);
+  if (!(y_top < extent.top))
+    throw reader.error("y_top", "must be below the mesh's top (" +
+                                    nlohmann::json(extent.top).dump() + " m after unit)");
+  if (!(y_bottom > extent.bottom))
+    throw reader.error("y_bottom", "must be above the mesh's bottom (" +
+                                       nlohmann::json(extent.bottom).dump() + " m after unit)");
+  try {
+    return mesh_sections(mesh, y_top, y_bottom, res.sections, res.points);
+  } catch (const InputError& e) {
+    throw reader.error(key, e.what());
+  }
+}
+
+// The keys that select a source; the default (no key) is the dress form.
 constexpr std::pair<const char*, SourceReader> kSources[] = {
     {"builtin", read_builtin},
     {"file", read_file_source},
+    {"mesh", read_mesh_source},
 };
 
 int read_count(JsonReader& reader, const std::string& key, int fallback, int minimum) {

@@ -1,7 +1,8 @@
 #pragma once
 // The dummy sources of SPEC 3, chosen by a scene's `dummy` object: the built-in dress form
-// (default), cylinder and sphere, and a sections file. Every source yields DummySections at the
-// requested resolution; `scale` (about the origin) and then `offset` place it in the scene.
+// (default), cylinder and sphere, a sections file and a sliced surface mesh. Every source yields
+// DummySections at the requested resolution; `scale` (about the origin) and then `offset` place
+// it in the scene.
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
