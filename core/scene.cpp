@@ -144,6 +144,7 @@ Scene parse_scene(const nlohmann::json& source, const std::string& file,
   s.file = file;
   s.base_dir = base_dir;
   s.source = source;
+  s.description = in.string("description", "");
   s.cloth = read_cloth(in.object("cloth"));
   s.pins = read_pins(in, s.cloth);
   s.forces.gravity = in.vec3("gravity", s.forces.gravity);

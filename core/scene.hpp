@@ -39,6 +39,7 @@ struct OutputOptions {
 /// One scene: cloth, pins, forces, object, duration, manipulation, input and output.
 struct Scene {
   std::string file;                ///< the scene file (for messages)
+  std::string description;         ///< what the scene shows (free text)
   std::filesystem::path base_dir;  ///< relative paths in the scene resolve against this
   ClothParams cloth;
   std::vector<GridPoint> pins;

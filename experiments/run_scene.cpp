@@ -18,13 +18,22 @@ namespace drape {
 namespace {
 
 /// Stops a run whose state no motion of this scene could reach.
-struct DivergenceCheck {
-  double speed_limit;
+///
+/// Bound on any particle's speed: a free fall over the whole run, plus twice the fastest
+/// prescribed motion, plus the speed one particle would have if it alone took all the kinetic
+/// and elastic energy present at the start or right after an event (mapping, attach). A
+/// physical motion stays below it; a numerical blow-up grows without bound and passes it within
+/// a few steps.
+class DivergenceCheck {
+ public:
+  explicit DivergenceCheck(const Scene& scene)
+      : m_base(10.0 + 2.0 * scene.forces.gravity.norm() * scene.duration) {}
 
-  // The fastest physical motion here is a free fall over the whole run plus whatever the
-  // prescribed motions add; a blow-up passes any such bound within a few steps.
-  DivergenceCheck(const Scene& scene)
-      : speed_limit(10.0 + 2.0 * scene.forces.gravity.norm() * scene.duration) {}
+  /// Raises the bound by the energy stored in a state (call at the start and after events).
+  void account_for(const ClothSystem& system, const EnergyBreakdown& e) {
+    const double stored = std::max(0.0, e.kinetic + e.spring + e.collision);
+    m_stored_speed = std::max(m_stored_speed, std::sqrt(2.0 * stored / system.particle_mass()));
+  }
 
   /// An empty string when the state is sound, else the reason.
   std::string reason(const ClothSystem& system, double t, const Eigen::VectorXd& y) const {
@@ -32,13 +41,18 @@ struct DivergenceCheck {
     const Eigen::Index n = system.num_particles();
     const auto v = y.tail(3 * n);
     double max_speed2 = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i) max_speed2 = std::max(max_speed2, v.segment<3>(3 * i).squaredNorm());
-    const double limit = speed_limit + 2.0 * system.constraints().max_speed(t);
+    for (Eigen::Index i = 0; i < n; ++i)
+      max_speed2 = std::max(max_speed2, v.segment<3>(3 * i).squaredNorm());
+    const double limit = m_base + m_stored_speed + 2.0 * system.constraints().max_speed(t);
     if (max_speed2 > limit * limit)
       return fmt::format("runaway: a particle moves at {:.3g} m/s, above the bound {:.3g} m/s",
                          std::sqrt(max_speed2), limit);
     return {};
   }
+
+ private:
+  double m_base;
+  double m_stored_speed = 0.0;
 };
 
 /// hands.csv: what each hand does at the output times (the candidate a viewer colours).
@@ -110,9 +124,11 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
   double drift_max_abs = 0.0;
   EnergyBreakdown e_last = e0;
 
-  const DivergenceCheck divergence(scene);
+  DivergenceCheck divergence(scene);
+  divergence.account_for(system, e0);
   RunOutcome outcome{"ok", "", exit_ok, {}};
   const double interval = scene.output.energy_interval;
+  long outputs_written = 0;  // output times are multiples of the interval, not running sums
   double next_output = interval;
   const auto wall_start = std::chrono::steady_clock::now();
   // Times within this of the end count as the end (fixed steps accumulate round-off).
@@ -124,8 +140,9 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
                  exit_diverged, {}};
       break;
     }
-    const double t_stop = std::min({interval > 0.0 ? next_output : scene.duration,
-                                    scene.duration, manipulator.next_key_time(t)});
+    double t_stop = std::min({interval > 0.0 ? next_output : scene.duration, scene.duration,
+                              manipulator.next_key_time(t)});
+    if (scene.duration - t_stop <= time_eps) t_stop = scene.duration;
     try {
       t = integrator->step(t_stop);
     } catch (const IntegratorFailure& failure) {
@@ -138,14 +155,18 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
       break;
     }
     const auto changed = manipulator.update(t, integrator->state());
-    if (changed) integrator->reset(t, *changed);
+    if (changed) {
+      integrator->reset(t, *changed);
+      divergence.account_for(system, energy_of(system, *changed));
+    }
     frames.record(t, integrator->state(), changed.has_value());
     if (interval == 0.0 || t >= next_output - time_eps || t >= scene.duration - time_eps) {
       e_last = energy_of(system, integrator->state());
       energy_file.write(t, e_last);
       if (hands_file) hands_file->write(t, manipulator.hands(t, integrator->state()));
       drift_max_abs = std::max(drift_max_abs, std::abs(e_last.total() - e0.total()));
-      while (interval > 0.0 && next_output <= t + time_eps) next_output += interval;
+      while (interval > 0.0 && next_output <= t + time_eps)
+        next_output = static_cast<double>(++outputs_written + 1) * interval;
     }
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

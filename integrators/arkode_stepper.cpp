@@ -130,7 +130,7 @@ void ArkodeStepper::restart(double initial_step) {
 double ArkodeStepper::step(double t_stop) {
   void* mem = m_arkode.get();
   const double target =
-      m_options.adaptive ? t_stop : m_t + fixed_step_size(m_options.dt, m_t, t_stop);
+      m_options.adaptive ? t_stop : fixed_step_end(m_options.dt, m_t, t_stop);
   check_sundials(ARKStepSetStopTime(mem, target), "ARKStepSetStopTime");
   m_corrections = 0;
   sunrealtype reached = m_t;

@@ -9,7 +9,8 @@ ImplicitEuler::ImplicitEuler(ClothSystem& system, const IntegratorOptions& optio
                options.linear_tolerance, options.max_linear_iters) {}
 
 double ImplicitEuler::step(double t_stop) {
-  const double h = fixed_step_size(m_dt, m_t, t_stop);
+  const double t_next = fixed_step_end(m_dt, m_t, t_stop);
+  const double h = t_next - m_t;
   VecMap x = positions(), v = velocities();
   const Eigen::Index n3 = x.size();
   // One Newton step of y_{n+1} = y_n + h f(y_{n+1}) from y_n solves (I - h J) dy = h f(y_n);
@@ -33,7 +34,7 @@ double ImplicitEuler::step(double t_stop) {
   m_counters.linear_iters += m_solver.iterations() - cg_before;
   ++m_counters.newton_iters;
   m_y += m_increment;  // x += h (v + dv), v += dv
-  m_t += h;
+  m_t = t_next;
   m_system.project(m_t, x, v);
   m_last_step = h;
   ++m_counters.steps;

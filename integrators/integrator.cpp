@@ -22,11 +22,10 @@ void Integrator::reset(double t, const Eigen::VectorXd& y) {
   ++m_counters.resets;
 }
 
-double fixed_step_size(double dt, double t, double t_stop) {
+double fixed_step_end(double dt, double t, double t_stop) {
   // A remainder within round-off of dt is taken as one full step, so that dt = 1/30 over 1 s
   // takes 30 steps, not 30 plus a sliver.
-  const double remaining = t_stop - t;
-  return remaining <= dt * (1.0 + 1e-9) ? remaining : dt;
+  return t_stop - t <= dt * (1.0 + 1e-9) ? t_stop : t + dt;
 }
 
 }  // namespace drape

@@ -68,7 +68,8 @@ class Integrator {
   IntegratorCounters m_counters;
 };
 
-/// The step of a fixed-step method that lands exactly on t_stop when it is within reach.
-double fixed_step_size(double dt, double t, double t_stop);
+/// End time of a fixed step of size dt from t: exactly t_stop when it is within reach, so that
+/// runs land on output, event and end times without round-off.
+double fixed_step_end(double dt, double t, double t_stop);
 
 }  // namespace drape

@@ -9,7 +9,8 @@ void Leapfrog::reset(double t, const Eigen::VectorXd& y) {
 }
 
 double Leapfrog::step(double t_stop) {
-  const double h = fixed_step_size(m_dt, m_t, t_stop);
+  const double t_next = fixed_step_end(m_dt, m_t, t_stop);
+  const double h = t_next - m_t;
   VecMap x = positions(), v = velocities();
   VecMap a(m_acceleration.data(), m_acceleration.size());
   if (!m_have_acceleration) {
@@ -18,7 +19,7 @@ double Leapfrog::step(double t_stop) {
   }
   v += 0.5 * h * a;  // v(n+1/2)
   x += h * v;        // x(n+1)
-  m_t += h;
+  m_t = t_next;
   m_system.project(m_t, x, v);
   m_system.acceleration(m_t, x, v, a);
   ++m_counters.rhs_evals;

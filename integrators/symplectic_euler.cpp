@@ -8,14 +8,15 @@ void SymplecticEuler::reset(double t, const Eigen::VectorXd& y) {
 }
 
 double SymplecticEuler::step(double t_stop) {
-  const double h = fixed_step_size(m_dt, m_t, t_stop);
+  const double t_next = fixed_step_end(m_dt, m_t, t_stop);
+  const double h = t_next - m_t;
   VecMap x = positions(), v = velocities();
   VecMap a(m_acceleration.data(), m_acceleration.size());
   m_system.acceleration(m_t, x, v, a);
   ++m_counters.rhs_evals;
   v += h * a;
   x += h * v;
-  m_t += h;
+  m_t = t_next;
   m_system.project(m_t, x, v);
   m_last_step = h;
   ++m_counters.steps;
