@@ -9,7 +9,7 @@ namespace drape {
 ClothSystem::ClothSystem(Cloth cloth, std::shared_ptr<const Dummy> dummy, ForceParams params)
     : m_cloth(std::move(cloth)),
       m_dummy(std::move(dummy)),
-      m_contacts(m_dummy, params.collision.threshold, m_cloth.size()),
+      m_collision(m_dummy, params.collision, m_cloth.size()),
       m_params(params),
       m_constraints(m_cloth.size()) {}
 
@@ -49,15 +49,7 @@ void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit spli
   }
 
   if (!m_dummy || !with_rest) return;
-  const double delta = m_params.collision.threshold;
-  const double k = m_params.collision.stiffness;
-  for (int i = 0; i < n; ++i) {
-    const Vec3 xi = particle(x, i);
-    const NearestObjectParticle hit = m_contacts.nearest(i, xi);
-    if (hit.index < 0) continue;
-    particle(f, i) += collision_force(xi - m_dummy->position(hit.index), m_dummy->normal(hit.index),
-                                      k, delta);
-  }
+  for (int i = 0; i < n; ++i) particle(f, i) += m_collision.force(i, particle(x, i));
 }
 
 void ClothSystem::acceleration(double t, ConstVecRef x, ConstVecRef v,
@@ -92,12 +84,11 @@ int ClothSystem::project(double t, VecRef x, VecRef v) const {
   if (m_dummy) {
     const auto& fixed = m_constraints.mask();
     for (int i = 0; i < num_particles(); ++i) {
-      if (fixed[i] || !m_dummy->inside(particle(x, i))) continue;
-      const int o = m_dummy->nearest(particle(x, i)).index;
-      const Vec3 normal = m_dummy->normal(o);
-      particle(x, i) = m_dummy->position(o);
-      const double inward = particle(v, i).dot(normal);
-      if (inward < 0.0) particle(v, i) -= inward * normal;
+      if (fixed[i]) continue;
+      Vec3 xi = particle(x, i), vi = particle(v, i);
+      if (!m_collision.correct_penetration(xi, vi)) continue;
+      particle(x, i) = xi;
+      particle(v, i) = vi;
       ++corrected;
     }
   }
@@ -114,16 +105,8 @@ EnergyBreakdown ClothSystem::energy(ConstVecRef x, ConstVecRef v) const {
     e.spring += spring_energy(particle(x, springs.second[s]) - particle(x, springs.first[s]),
                               springs.stiffness[s], springs.rest[s]);
   for (int i = 0; i < num_particles(); ++i) e.gravity -= m * m_params.gravity.dot(particle(x, i));
-  if (m_dummy) {
-    const double delta = m_params.collision.threshold;
-    for (int i = 0; i < num_particles(); ++i) {
-      const Vec3 xi = particle(x, i);
-      const NearestObjectParticle hit = m_contacts.nearest(i, xi);
-      if (hit.index >= 0)
-        e.collision += collision_energy(xi - m_dummy->position(hit.index),
-                                        m_params.collision.stiffness, delta);
-    }
-  }
+  for (int i = 0; m_dummy && i < num_particles(); ++i)
+    e.collision += m_collision.energy(i, particle(x, i));
   return e;
 }
 
@@ -149,18 +132,8 @@ void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool def
   }
   if (split == ForceSplit::springs) return;
   const Mat3 air = -m_cloth.params.damping_air * Mat3::Identity();
-  const double delta = m_params.collision.threshold;
-  const double k = m_params.collision.stiffness;
-  for (int i = 0; i < num_particles(); ++i) {
-    Mat3 jx = Mat3::Zero();
-    if (m_dummy) {
-      const Vec3 xi = particle(x, i);
-      const NearestObjectParticle hit = m_contacts.nearest(i, xi);
-      if (hit.index >= 0)
-        jx = collision_jacobian(xi - m_dummy->position(hit.index), k, delta, definite);
-    }
-    visit(i, -1, jx, air);
-  }
+  for (int i = 0; i < num_particles(); ++i)
+    visit(i, -1, m_collision.jacobian(i, particle(x, i), definite), air);
 }
 
 void ClothSystem::force_jacobian_times(ConstVecRef x, ConstVecRef v,

@@ -12,12 +12,6 @@
 
 namespace drape {
 
-/// Collision parameters of the paper's section 2.3 (SPEC 4).
-struct CollisionParams {
-  double threshold = 0.01;    ///< delta: distance below which the repulsion acts [m]
-  double stiffness = 1000.0;  ///< k_collision [N/m]
-};
-
 /// Forces that are not springs: gravity and collision.
 struct ForceParams {
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);
@@ -98,7 +92,7 @@ class ClothSystem {
 
   Cloth m_cloth;
   std::shared_ptr<const Dummy> m_dummy;
-  ContactFinder m_contacts;
+  Collision m_collision;
   ForceParams m_params;
   ConstraintSet m_constraints;
 };

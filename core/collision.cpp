@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/forces.hpp"
+
 namespace drape {
 
 ContactFinder::ContactFinder(std::shared_ptr<const Dummy> dummy, double threshold,
@@ -43,6 +45,74 @@ NearestObjectParticle ContactFinder::nearest(int i, const Vec3& x) const {
   }
   if (best < 0) return {};
   return {best, std::sqrt(best_d2)};
+}
+
+}  // namespace drape
+
+namespace drape {
+
+Collision::Collision(std::shared_ptr<const Dummy> dummy, const CollisionParams& params,
+                     int num_particles)
+    : m_dummy(std::move(dummy)),
+      m_params(params),
+      m_contacts(m_dummy, params.threshold, m_dummy ? num_particles : 0) {}
+
+Vec3 Collision::force(int i, const Vec3& x) const {
+  if (!m_dummy) return Vec3::Zero();
+  const double delta = m_params.threshold, k = m_params.stiffness;
+  if (m_params.model == CollisionModel::surface) {
+    const auto g = m_dummy->surface_gap(x);
+    return g && g->gap < delta ? Vec3(k * (delta - g->gap) * g->gradient) : Vec3::Zero();
+  }
+  const NearestObjectParticle hit = m_contacts.nearest(i, x);
+  if (hit.index < 0) return Vec3::Zero();
+  return collision_force(x - m_dummy->position(hit.index), m_dummy->normal(hit.index), k, delta);
+}
+
+double Collision::energy(int i, const Vec3& x) const {
+  if (!m_dummy) return 0.0;
+  const double delta = m_params.threshold, k = m_params.stiffness;
+  if (m_params.model == CollisionModel::surface) {
+    const auto g = m_dummy->surface_gap(x);
+    return g && g->gap < delta ? 0.5 * k * (delta - g->gap) * (delta - g->gap) : 0.0;
+  }
+  const NearestObjectParticle hit = m_contacts.nearest(i, x);
+  return hit.index < 0 ? 0.0 : collision_energy(x - m_dummy->position(hit.index), k, delta);
+}
+
+Mat3 Collision::jacobian(int i, const Vec3& x, bool definite) const {
+  if (!m_dummy) return Mat3::Zero();
+  const double delta = m_params.threshold, k = m_params.stiffness;
+  if (m_params.model == CollisionModel::surface) {
+    const auto g = m_dummy->surface_gap(x);
+    if (!g || g->gap >= delta) return Mat3::Zero();
+    return -k * g->gradient * g->gradient.transpose();
+  }
+  const NearestObjectParticle hit = m_contacts.nearest(i, x);
+  if (hit.index < 0) return Mat3::Zero();
+  return collision_jacobian(x - m_dummy->position(hit.index), k, delta, definite);
+}
+
+bool Collision::correct_penetration(Vec3& x, Vec3& v) const {
+  if (!m_dummy) return false;
+  Vec3 normal;
+  if (m_params.model == CollisionModel::surface) {
+    const auto g = m_dummy->surface_gap(x);
+    if (!g || g->gap >= 0.0) return false;
+    // Radially out by the gap: theta and y are unchanged, so the gap becomes exactly 0.
+    const Eigen::Vector2d axis = m_dummy->axis_at(x.y());
+    const Vec3 radial = Vec3(x.x() - axis.x(), 0.0, x.z() - axis.y()).normalized();
+    x -= g->gap * radial;
+    normal = g->gradient.normalized();
+  } else {
+    if (!m_dummy->inside(x)) return false;
+    const int o = m_dummy->nearest(x).index;
+    x = m_dummy->position(o);
+    normal = m_dummy->normal(o);
+  }
+  const double inward = v.dot(normal);
+  if (inward < 0.0) v -= inward * normal;
+  return true;
 }
 
 }  // namespace drape

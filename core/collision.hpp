@@ -12,6 +12,19 @@
 
 namespace drape {
 
+/// How the cloth feels the object (SPEC 4).
+enum class CollisionModel {
+  particle,  ///< the paper's: repulsion from the nearest object particle
+  surface,   ///< extension: repulsion from the interpolated surface (no particle switching)
+};
+
+/// Collision parameters of the paper's section 2.3 (SPEC 4).
+struct CollisionParams {
+  double threshold = 0.01;    ///< delta: distance below which the repulsion acts [m]
+  double stiffness = 1000.0;  ///< k_collision [N/m]
+  CollisionModel model = CollisionModel::particle;
+};
+
 /// Nearest object particle within the collision threshold, per cloth particle, with cached
 /// candidate lists. Results equal Dummy::nearest_within(x, threshold) bit for bit.
 class ContactFinder {
@@ -37,6 +50,42 @@ class ContactFinder {
   mutable std::vector<int> m_count;          // N: list length, not_built or overflowed
   mutable std::vector<int> m_candidates;     // N * capacity object particle indices, ascending
   mutable std::vector<int> m_scratch;
+};
+
+}  // namespace drape
+
+namespace drape {
+
+/// The collision term of one cloth particle against the object: force, energy, Jacobian and
+/// penetration correction, for either model. The object feels nothing.
+///
+/// `particle` (the paper): with o the nearest object particle and d = |x - p_o| < delta,
+/// force k (delta - d) (x - p_o) / d, energy k (delta - d)^2 / 2; a particle inside the surface
+/// moves onto p_o. `surface`: with the radial gap g = r_h - R(y, theta) to the interpolated
+/// surface (Dummy::surface_gap) and g < delta, energy k (delta - g)^2 / 2 and force
+/// k (delta - g) grad g; a particle inside moves radially onto the surface. Both remove the
+/// inward normal velocity of a corrected particle.
+class Collision {
+ public:
+  /// `dummy` may be null: then every term is zero.
+  Collision(std::shared_ptr<const Dummy> dummy, const CollisionParams& params, int num_particles);
+
+  const CollisionParams& params() const { return m_params; }
+  /// Force on cloth particle i at x.
+  Vec3 force(int i, const Vec3& x) const;
+  /// Collision energy of cloth particle i at x.
+  double energy(int i, const Vec3& x) const;
+  /// dF/dx of cloth particle i at x. The surface model uses the Gauss-Newton part
+  /// -k grad g grad g^T (it drops the surface's curvature term), definite either way.
+  Mat3 jacobian(int i, const Vec3& x, bool definite) const;
+  /// Moves a particle found inside the object out of it and removes its inward normal
+  /// velocity; returns whether it was inside.
+  bool correct_penetration(Vec3& x, Vec3& v) const;
+
+ private:
+  std::shared_ptr<const Dummy> m_dummy;
+  CollisionParams m_params;
+  ContactFinder m_contacts;
 };
 
 }  // namespace drape

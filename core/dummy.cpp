@@ -123,6 +123,48 @@ double Dummy::section_radius(int k, double theta) const {
   return (1.0 - f) * m_sections.radius(k, j) + f * m_sections.radius(k, j1);
 }
 
+double Dummy::section_radius_slope(int k, double theta) const {
+  const int m = points();
+  double u = theta * (m / kTwoPi);
+  u -= m * std::floor(u / m);
+  int j = static_cast<int>(u);
+  if (j >= m) j = m - 1;
+  const int j1 = j + 1 == m ? 0 : j + 1;
+  return (m_sections.radius(k, j1) - m_sections.radius(k, j)) * (m / kTwoPi);
+}
+
+std::optional<SurfaceGap> Dummy::surface_gap(const Vec3& p) const {
+  const auto& ys = m_sections.y;
+  if (!(p.y() < ys.front() && p.y() > ys.back())) return std::nullopt;
+  double t = 0.0;
+  const int k = bracket(p.y(), t);
+  const double dy = ys[k] - ys[k + 1];
+  const Eigen::Vector2d axis((1.0 - t) * m_sections.cx[k] + t * m_sections.cx[k + 1],
+                             (1.0 - t) * m_sections.cz[k] + t * m_sections.cz[k + 1]);
+  // d(axis)/dy: t grows downwards, so dt/dy = -1/dy.
+  const Eigen::Vector2d axis_slope((m_sections.cx[k] - m_sections.cx[k + 1]) / dy,
+                                   (m_sections.cz[k] - m_sections.cz[k + 1]) / dy);
+  const double hx = p.x() - axis.x(), hz = p.z() - axis.y();
+  const double r = std::hypot(hx, hz);
+  if (r < 1e-12) return std::nullopt;  // on the axis the angle, and so the gap, is undefined
+  const double theta = std::atan2(hx, hz);
+  const Vec3 radial(hx / r, 0.0, hz / r);       // direction of increasing r_h
+  const Vec3 tangent(hz / r, 0.0, -hx / r);     // direction of increasing theta
+  const double r_k = section_radius(k, theta), r_k1 = section_radius(k + 1, theta);
+  const double dR_dtheta =
+      (1.0 - t) * section_radius_slope(k, theta) + t * section_radius_slope(k + 1, theta);
+  const double dR_dy = (r_k - r_k1) / dy;
+  // g = r_h - R(y, theta(x, y)) with r_h and theta measured from the axis (cx(y), cz(y)):
+  // moving up by dy moves the axis by axis_slope dy, which changes both r_h and theta.
+  const double axis_radial = radial.x() * axis_slope.x() + radial.z() * axis_slope.y();
+  const double axis_tangent = tangent.x() * axis_slope.x() + tangent.z() * axis_slope.y();
+  SurfaceGap g;
+  g.gap = r - ((1.0 - t) * r_k + t * r_k1);
+  g.gradient = radial - (dR_dtheta / r) * tangent;
+  g.gradient.y() = -axis_radial - dR_dy + dR_dtheta * axis_tangent / r;
+  return g;
+}
+
 double Dummy::surface_radius(double y, double theta) const {
   double t = 0.0;
   const int k = bracket(y, t);

@@ -4,6 +4,7 @@
 // per angle theta_j = 2*pi*j/points, measured from the front (+z) towards +x. Object particle
 // o = k*points + j sits at (cx_k + rho sin theta_j, y_k, cz_k + rho cos theta_j).
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/dummy_grid.hpp"
@@ -26,6 +27,14 @@ struct DummySections {
 struct NearestObjectParticle {
   int index = -1;  ///< object particle index, -1 when none qualifies
   double distance = 0.0;
+};
+
+/// Where a point is relative to the interpolated surface (the `surface` collision model):
+/// the radial gap g = r_h - R(y, theta), r_h the horizontal distance from the interpolated axis,
+/// and its gradient with respect to the point.
+struct SurfaceGap {
+  double gap = 0.0;
+  Vec3 gradient = Vec3::Zero();
 };
 
 /// The particle dummy: positions, outward normals, nearest-particle queries, inside test.
@@ -61,6 +70,9 @@ class Dummy {
   double surface_radius(double y, double theta) const;
   /// Section centre (cx, cz) interpolated linearly in height.
   Eigen::Vector2d axis_at(double y) const;
+  /// The radial gap to the interpolated surface and its gradient, for p between the top and
+  /// bottom sections and off the axis; nothing elsewhere (the stack is open at its ends).
+  std::optional<SurfaceGap> surface_gap(const Vec3& p) const;
   /// True when p lies between the top and bottom sections and its horizontal distance from the
   /// interpolated axis is below the surface radius at its angle (SPEC 4, penetration).
   bool inside(const Vec3& p) const;
@@ -70,6 +82,8 @@ class Dummy {
   int bracket(double y, double& t) const;
   /// Radius of section k at angle theta, linear between its two neighbouring particles.
   double section_radius(int k, double theta) const;
+  /// d/dtheta of section_radius (constant along each edge between two particles).
+  double section_radius_slope(int k, double theta) const;
 
   DummySections m_sections;
   Eigen::VectorXd m_positions;

@@ -71,8 +71,10 @@ CollisionParams read_collision(JsonReader in) {
   c.threshold = in.positive("threshold", in.number("threshold", c.threshold));
   c.stiffness = in.non_negative("stiffness", in.number("stiffness", c.stiffness));
   const std::string model = in.string("model", "particle");
-  if (model != "particle")
-    throw in.error("model", "unknown collision model '" + model + "' (known: particle)");
+  if (model == "surface")
+    c.model = CollisionModel::surface;
+  else if (model != "particle")
+    throw in.error("model", "unknown collision model '" + model + "' (known: particle, surface)");
   in.finish();
   return c;
 }

@@ -58,5 +58,88 @@ TEST(DummyParticlesWithin, MatchesTheBruteForceScan) {
   }
 }
 
+// A sheared stack: the axis moves with height and the radius varies with height and angle, so
+// every term of the gap's gradient is exercised.
+Dummy leaning_stack() {
+  DummySections s;
+  const int sections = 9, points = 12;
+  s.radius.resize(sections, points);
+  for (int k = 0; k < sections; ++k) {
+    s.y.push_back(1.2 - 0.05 * k);
+    s.cx.push_back(0.01 * k);
+    s.cz.push_back(-0.005 * k * k);
+    for (int j = 0; j < points; ++j) s.radius(k, j) = 0.1 + 0.004 * k + 0.01 * std::sin(j);
+  }
+  return Dummy(s);
+}
+
+TEST(SurfaceCollision, ForceIsMinusEnergyGradient) {
+  const auto dummy = std::make_shared<const Dummy>(leaning_stack());
+  const CollisionParams params{0.02, 300.0, CollisionModel::surface};
+  const Collision collision(dummy, params, 1);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int checked = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    // Mid-way between sections and between particles: away from the kinks of the piecewise
+    // linear surface, where the energy is smooth and central differences are exact to O(h^2).
+    const int k = static_cast<int>(u(rng) * 8), j = static_cast<int>(u(rng) * 12);
+    const double y = 1.2 - 0.05 * (k + 0.3 + 0.4 * u(rng));
+    const double theta = 2 * M_PI / 12 * (j + 0.3 + 0.4 * u(rng));
+    const Eigen::Vector2d axis = dummy->axis_at(y);
+    const double r = dummy->surface_radius(y, theta) + 0.03 * u(rng) - 0.005;
+    const Vec3 x(axis.x() + r * std::sin(theta), y, axis.y() + r * std::cos(theta));
+    const Vec3 f = collision.force(0, x);
+    if (f.isZero()) continue;
+    Vec3 grad;
+    for (int a = 0; a < 3; ++a) {
+      Vec3 h = Vec3::Zero();
+      h[a] = 1e-7;
+      grad[a] = (collision.energy(0, x + h) - collision.energy(0, x - h)) / 2e-7;
+    }
+    EXPECT_LT((f + grad).norm(), 1e-5 * f.norm()) << "trial " << trial;
+    ++checked;
+  }
+  EXPECT_GT(checked, 100);
+}
+
+TEST(SurfaceCollision, ClosedFormOnACylinder) {
+  const auto dummy = std::make_shared<const Dummy>(cylinder_sections(0.1, 0.0, 0.0, 1.0, 0.5, 11, 16));
+  const Collision collision(dummy, {0.02, 500.0, CollisionModel::surface}, 1);
+  // 5 mm outside the surface at 30 degrees: pushed radially with k (delta - g) = 500 * 0.015.
+  const double theta = M_PI / 6, r = 0.105;
+  const Vec3 x(r * std::sin(theta), 0.75, r * std::cos(theta));
+  const Vec3 f = collision.force(0, x);
+  // The polygon between particles is not the circle: R at 30 degrees is the linear mix of the
+  // radii at 22.5 and 45 degrees, both 0.1, so the gap is exactly 5 mm.
+  EXPECT_LT((f - 7.5 * Vec3(std::sin(theta), 0, std::cos(theta))).norm(), 1e-9);
+  EXPECT_NEAR(collision.energy(0, x), 0.5 * 500 * 0.015 * 0.015, 1e-12);
+  EXPECT_TRUE(collision.force(0, Vec3(0.0, 0.75, 0.121)).isZero()) << "beyond the threshold";
+  EXPECT_TRUE(collision.force(0, Vec3(0.0, 1.01, 0.1)).isZero()) << "above the open top";
+}
+
+TEST(PenetrationCorrection, ParticleInsideEndsOutsideForBothModels) {
+  const auto dummy = std::make_shared<const Dummy>(leaning_stack());
+  for (const CollisionModel model : {CollisionModel::particle, CollisionModel::surface}) {
+    const Collision collision(dummy, {0.01, 100.0, model}, 1);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int trial = 0; trial < 200; ++trial) {
+      const double y = 1.19 - 0.38 * u(rng), theta = 2 * M_PI * u(rng);
+      const Eigen::Vector2d axis = dummy->axis_at(y);
+      const double r = dummy->surface_radius(y, theta) * (0.2 + 0.75 * u(rng));
+      Vec3 x(axis.x() + r * std::sin(theta), y, axis.y() + r * std::cos(theta));
+      Vec3 v(-std::sin(theta), -0.5, -std::cos(theta));  // moving inwards and down
+      ASSERT_TRUE(dummy->inside(x));
+      ASSERT_TRUE(collision.correct_penetration(x, v));
+      EXPECT_FALSE(dummy->inside(x)) << "trial " << trial;
+      const Vec3 normal = model == CollisionModel::surface
+                              ? dummy->surface_gap(x)->gradient.normalized()
+                              : dummy->normal(dummy->nearest(x).index);
+      EXPECT_GE(v.dot(normal), -1e-12) << "no inward normal velocity left";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace drape

@@ -64,8 +64,8 @@ INSTANTIATE_TEST_SUITE_P(
         SceneCase{"combination4_hold_release_attach.json",
                   {"hold", "release", "attach", "attach_fixed"}},
         SceneCase{"kinect_drawlines_hold.json", {"hold", "release"}}),
-    [](const auto& info) {
-      std::string name = fs::path(info.param.file).stem().string();
+    [](const auto& test) {
+      std::string name = fs::path(test.param.file).stem().string();
       for (char& ch : name)
         if (ch == '_') ch = 'X';
       return name;
