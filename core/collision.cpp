@@ -103,7 +103,8 @@ bool Collision::correct_penetration(Vec3& x, Vec3& v) const {
     const Eigen::Vector2d axis = m_dummy->axis_at(x.y());
     const Vec3 radial = Vec3(x.x() - axis.x(), 0.0, x.z() - axis.y()).normalized();
     x -= g->gap * radial;
-    normal = g->gradient.normalized();
+    // The normal where the particle now is: the gradient's tangential part scales with 1/r_h.
+    normal = m_dummy->surface_gap(x)->gradient.normalized();
   } else {
     if (!m_dummy->inside(x)) return false;
     const int o = m_dummy->nearest(x).index;

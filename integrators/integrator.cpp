@@ -19,7 +19,9 @@ nlohmann::json IntegratorCounters::to_json() const {
 void Integrator::reset(double t, const Eigen::VectorXd& y) {
   m_t = t;
   m_y = y;
-  ++m_counters.resets;
+  // The first call starts the run; every later one is a restart at an event.
+  if (m_started) ++m_counters.resets;
+  m_started = true;
 }
 
 double fixed_step_end(double dt, double t, double t_stop) {

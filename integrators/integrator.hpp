@@ -64,6 +64,7 @@ class Integrator {
   ClothSystem& m_system;
   double m_t = 0.0;
   double m_last_step = 0.0;
+  bool m_started = false;
   Eigen::VectorXd m_y;
   IntegratorCounters m_counters;
 };

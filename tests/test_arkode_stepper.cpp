@@ -181,7 +181,7 @@ TEST(ArkodeStepper, CountersAddUp) {
   EXPECT_GT(c.linear_iters, 0);
   EXPECT_GT(c.jacobian_setups, 0);
   EXPECT_GT(c.rhs_evals, 0);
-  EXPECT_EQ(c.resets, 1);
+  EXPECT_EQ(c.resets, 0) << "the start is not a restart";
 }
 
 TEST(ArkodeStepper, SolverFailureIsAnIntegratorFailure) {

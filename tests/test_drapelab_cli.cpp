@@ -115,4 +115,48 @@ TEST(DrapelabRun, DivergenceStopsWritesItsSummaryAndExitsWithThree) {
   EXPECT_FALSE(fs::exists(out / "state.csv")) << "no final state is passed off as complete";
 }
 
+TEST(DrapelabRun, BadRecordingExitsWithTwoNamingFileAndLine) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "bad_recording";
+  fs::create_directories(dir);
+  {
+    std::ofstream bad(dir / "hands.jsonl");
+    bad << "{\"format\": \"drapelab-recording\", \"version\": 1}\n"
+        << "{\"t\": 0.0, \"right\": [0, 1, 0]}\n"
+        << "{\"t\": 0.1, \"right\": [0, NaN, 0]}\n";
+  }
+  nlohmann::json scene = hanging_cloth();
+  scene["input"] = {{"recording", "hands.jsonl"}};
+  std::ofstream(dir / "scene.json") << scene.dump(2);
+  Result r = drapelab("run " + (dir / "scene.json").string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("hands.jsonl"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
+
+  r = drapelab("convert " + (dir / "hands.jsonl").string() + " " + (dir / "out.jsonl").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
+}
+
+TEST(DrapelabRun, CombinationRunsUnderAnImplicitIntegrator) {
+  const fs::path out = fs::path(::testing::TempDir()) / "c4_implicit";
+  fs::remove_all(out);
+  const std::string scene =
+      std::string(DRAPE_SOURCE_DIR) + "/experiments/scenes/combination4_hold_release_attach.json";
+  const Result r = drapelab("run " + scene + " --out " + out.string() +
+                            " --set integrator.name=implicit-euler --set integrator.dt=0.005");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  std::vector<std::string> types;
+  for (const auto& e : summary["events"]) types.push_back(e["type"]);
+  EXPECT_EQ(types, (std::vector<std::string>{"hold", "release", "attach", "attach_fixed"}));
+  EXPECT_EQ(summary["counters"]["resets"], 4) << "restarted at each event";
+}
+
+TEST(Readme, TestCommandIsWhatCiRuns) {
+  const std::string readme = read_text(fs::path(DRAPE_SOURCE_DIR) / "README.md");
+  const std::string ci = read_text(fs::path(DRAPE_SOURCE_DIR) / ".ci" / "run");
+  const std::string command = ci.substr(ci.rfind("./install_dependencies.sh"));
+  EXPECT_NE(readme.find(command), std::string::npos) << command;
+}
+
 }  // namespace
