@@ -1,5 +1,6 @@
 #include "core/cloth_system.hpp"
 
+#include <algorithm>
 #include <vector>
 
 #include "core/forces.hpp"
@@ -196,6 +197,32 @@ void ClothSystem::force_jacobians(ConstVecRef x, ConstVecRef v, bool definite,
   dfdv.resize(n3, n3);
   dfdx.setFromTriplets(tx.begin(), tx.end());
   dfdv.setFromTriplets(tv.begin(), tv.end());
+}
+
+void ClothSystem::force_jacobian_blocks(ConstVecRef x, ConstVecRef v, bool definite,
+                                        ForceSplit split, JacobianBlocks& blocks) const {
+  const auto springs = static_cast<std::size_t>(m_cloth.springs.size());
+  const auto particles = static_cast<std::size_t>(num_particles());
+  // Every block is written: the spring blocks in spring order, each particle block once.
+  blocks.spring_x.resize(springs);
+  blocks.spring_v.resize(springs);
+  blocks.particle_x.assign(particles, Mat3::Zero());
+  blocks.particle_v.assign(particles, Mat3::Zero());
+  std::size_t e = 0;
+  for_each_jacobian_block(x, v, definite, split, [&](int i, int j, const Mat3& jx, const Mat3& jv) {
+    if (j < 0) {
+      blocks.particle_x[static_cast<std::size_t>(i)] = jx;
+      blocks.particle_v[static_cast<std::size_t>(i)] = jv;
+      return;
+    }
+    blocks.spring_x[e] = jx;
+    blocks.spring_v[e] = jv;
+    ++e;
+  });
+  if (split == ForceSplit::non_springs) {
+    std::fill(blocks.spring_x.begin(), blocks.spring_x.end(), Mat3::Zero());
+    std::fill(blocks.spring_v.begin(), blocks.spring_v.end(), Mat3::Zero());
+  }
 }
 
 }  // namespace drape

@@ -4,6 +4,7 @@
 // after every step. The model evaluates; it never owns time or steps.
 #include <Eigen/SparseCore>
 #include <memory>
+#include <vector>
 
 #include "core/cloth.hpp"
 #include "core/collision.hpp"
@@ -30,6 +31,15 @@ struct EnergyBreakdown {
 /// Which forces an evaluation includes, for the IMEX splitting of arkode-imex: every force, the
 /// springs (elastic and spring damping), or the rest (gravity, air damping, collision).
 enum class ForceSplit { all, springs, non_springs };
+
+/// dF/dx and dF/dv as 3x3 blocks in the pair pattern of forces.hpp, for solvers that keep the
+/// spring graph's sparsity fixed: spring e (i, j) contributes [-J J; J -J] to rows and columns
+/// (i, j); a particle block acts on particle i alone. Fixed particles' rows are not zeroed (a
+/// spring block is shared by two rows): callers drop them.
+struct JacobianBlocks {
+  std::vector<Mat3> spring_x, spring_v;      ///< J = dF_i/dx_j and dF_i/dv_j, one per spring
+  std::vector<Mat3> particle_x, particle_v;  ///< dF_i/dx_i and dF_i/dv_i, one per particle
+};
 
 /// The constrained cloth ODE: forces, right-hand side, projection, energy and Jacobians.
 class ClothSystem {
@@ -84,6 +94,9 @@ class ClothSystem {
   void force_jacobians(ConstVecRef x, ConstVecRef v, bool definite,
                        Eigen::SparseMatrix<double>& dfdx, Eigen::SparseMatrix<double>& dfdv,
                        ForceSplit split) const;
+  /// The Jacobian blocks of the forces that `split` selects (every spring, every particle).
+  void force_jacobian_blocks(ConstVecRef x, ConstVecRef v, bool definite, ForceSplit split,
+                             JacobianBlocks& blocks) const;
 
  private:
   template <class Visit>

@@ -41,8 +41,8 @@ ArkodeStepper::ArkodeStepper(ClothSystem& system, ArkodeKind kind,
         return table;
       }()) {
   if (kind != ArkodeKind::explicit_rk)
-    m_reduced.emplace(system, *reduced_solve_named(options.linear_solver), implicit_split(),
-                      options.linear_tolerance, options.max_linear_iters);
+    m_reduced.emplace(system, *reduced_solve_named(linear_solver_of(options)), implicit_split(),
+                      linear_tolerance_of(options), options.max_linear_iters);
   // The N_Vector views m_y for the whole life of the stepper: m_y keeps this size and buffer.
   m_y = Eigen::VectorXd::Zero(system.size());
   m_y_vector = detail::wrap_vector(m_y, m_context);
@@ -102,7 +102,7 @@ void ArkodeStepper::set_up_newton() {
   void* mem = m_arkode.get();
   // CG inside the preconditioner is not a fixed linear operator: flexible GMRES tolerates that;
   // the factorised solve is one, and plain GMRES is enough.
-  const bool inexact = m_options.linear_solver == "pcg-reduced";
+  const bool inexact = linear_solver_of(m_options) == "pcg-reduced";
   m_linear_solver.reset(detail::check_created(
       inexact ? SUNLinSol_SPFGMR(m_y_vector.get(), SUN_PREC_RIGHT, krylov_dimension, m_context)
               : SUNLinSol_SPGMR(m_y_vector.get(), SUN_PREC_RIGHT, krylov_dimension, m_context),

@@ -5,8 +5,8 @@ namespace drape {
 ImplicitEuler::ImplicitEuler(ClothSystem& system, const IntegratorOptions& options)
     : Integrator(system),
       m_dt(options.dt),
-      m_solver(system, *reduced_solve_named(options.linear_solver), ForceSplit::all,
-               options.linear_tolerance, options.max_linear_iters) {}
+      m_solver(system, *reduced_solve_named(linear_solver_of(options)), ForceSplit::all,
+               linear_tolerance_of(options), options.max_linear_iters) {}
 
 double ImplicitEuler::step(double t_stop) {
   const double t_next = fixed_step_end(m_dt, m_t, t_stop);
@@ -30,7 +30,8 @@ double ImplicitEuler::step(double t_stop) {
   ++m_counters.jacobian_setups;
   m_increment.resize(m_y.size());
   const long cg_before = m_solver.iterations();
-  if (!m_solver.solve(m_residual, m_increment)) ++m_counters.convergence_failures;
+  // The last step's dv starts CG: velocities change smoothly from step to step.
+  if (!m_solver.solve(m_residual, m_increment, CgStart::previous)) ++m_counters.convergence_failures;
   m_counters.linear_iters += m_solver.iterations() - cg_before;
   ++m_counters.newton_iters;
   m_y += m_increment;  // x += h (v + dv), v += dv

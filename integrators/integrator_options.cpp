@@ -24,14 +24,27 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
   o.linear_solver = in.string("linear_solver", o.linear_solver);
   o.max_newton_iters = in.integer("max_newton_iters", o.max_newton_iters);
   if (o.max_newton_iters < 1) throw in.error("max_newton_iters", "must be at least 1");
-  o.linear_tolerance = in.positive("linear_tolerance",
-                                   in.number("linear_tolerance", o.linear_tolerance));
+  o.linear_tolerance = in.positive(
+      "linear_tolerance", in.number("linear_tolerance", default_linear_tolerance(o.name)));
   o.max_linear_iters = in.integer("max_linear_iters", o.max_linear_iters);
   if (o.max_linear_iters < 1) throw in.error("max_linear_iters", "must be at least 1");
   o.max_steps = static_cast<long>(in.positive("max_steps", in.number("max_steps", 1e8)));
   in.finish();
   validate_integrator_choice(o, file, path);
   return o;
+}
+
+std::string linear_solver_of(const IntegratorOptions& options) {
+  return options.linear_solver.empty() ? "pcg-reduced" : options.linear_solver;
+}
+
+double default_linear_tolerance(const std::string& name) {
+  return name == "implicit-euler" ? 1e-3 : 1e-8;
+}
+
+double linear_tolerance_of(const IntegratorOptions& options) {
+  return options.linear_tolerance > 0.0 ? options.linear_tolerance
+                                        : default_linear_tolerance(options.name);
 }
 
 nlohmann::json to_json(const IntegratorOptions& o) {
@@ -44,7 +57,7 @@ nlohmann::json to_json(const IntegratorOptions& o) {
           {"max_dt", o.max_dt},
           {"linear_solver", o.linear_solver},
           {"max_newton_iters", o.max_newton_iters},
-          {"linear_tolerance", o.linear_tolerance},
+          {"linear_tolerance", linear_tolerance_of(o)},
           {"max_linear_iters", o.max_linear_iters},
           {"max_steps", o.max_steps}};
 }

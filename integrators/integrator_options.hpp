@@ -15,12 +15,23 @@ struct IntegratorOptions {
   double rtol = 1e-4;             ///< relative tolerance of adaptive runs
   double atol = 1e-7;             ///< absolute tolerance of adaptive runs
   double max_dt = 0.0;            ///< largest adaptive step, 0 = unbounded
-  std::string linear_solver = "pcg-reduced";  ///< implicit solves (see docs/integrators.md)
+  /// Implicit solves (docs/integrators.md), implicit integrators only; "" = pcg-reduced.
+  std::string linear_solver;
   int max_newton_iters = 10;      ///< Newton iterations per stage before a failure
-  double linear_tolerance = 1e-8; ///< relative residual of the iterative linear solvers
+  /// Relative residual of the iterative linear solvers; 0 = default_linear_tolerance(name).
+  double linear_tolerance = 0.0;
   int max_linear_iters = 200;     ///< Krylov / CG iterations per solve
   long max_steps = 100000000;     ///< safety bound on steps per run
 };
+
+/// The linear solver an implicit integrator uses: `linear_solver`, or pcg-reduced when empty.
+std::string linear_solver_of(const IntegratorOptions& options);
+/// CG's relative residual when `linear_tolerance` is 0: 1e-3 for implicit-euler (its single
+/// linearised step is first order: a 1e-3 residual stays below its truncation error at any
+/// step worth taking implicitly, docs/integrators.md), 1e-8 inside ARKODE's preconditioner.
+double default_linear_tolerance(const std::string& name);
+/// `linear_tolerance`, or the integrator's default when it is 0.
+double linear_tolerance_of(const IntegratorOptions& options);
 
 /// Reads and validates an `integrator` object; errors name `file` and `path.key`.
 IntegratorOptions read_integrator_options(const nlohmann::json& object, const std::string& file,

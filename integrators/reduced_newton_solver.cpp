@@ -1,6 +1,7 @@
 #include "integrators/reduced_newton_solver.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 
 namespace drape {
 
@@ -21,7 +22,7 @@ ReducedNewtonSolver::ReducedNewtonSolver(const ClothSystem& system, ReducedSolve
       m_max_iterations(max_iterations) {}
 
 void ReducedNewtonSolver::update(ConstVecRef x, ConstVecRef v, double gamma) {
-  m_system.force_jacobians(x, v, true, m_dfdx, m_dfdv, m_split);
+  m_system.force_jacobian_blocks(x, v, true, m_split, m_jacobian);
   m_has_jacobian = true;
   set_gamma(gamma);
 }
@@ -32,71 +33,194 @@ void ReducedNewtonSolver::set_gamma(double gamma) {
 }
 
 void ReducedNewtonSolver::form_system() {
-  const Eigen::Index n3 = m_dfdx.rows();
-  Eigen::SparseMatrix<double> mass(n3, n3);
-  mass.setIdentity();
-  mass *= m_system.particle_mass();
-  m_s = mass - m_gamma * m_dfdv - (m_gamma * m_gamma) * m_dfdx;
-  // A fixed particle's rows of K and D are already zero; dropping its columns too leaves S
-  // symmetric with M on its diagonal, decoupled from the free particles (its z_v is known).
+  const SpringSet& springs = m_system.cloth().springs;
   const auto& fixed = m_system.constraints().mask();
-  m_s.prune([&](Eigen::Index row, Eigen::Index col, double) {
-    return row == col || !fixed[static_cast<std::size_t>(col / 3)];
-  });
+  const double mass = m_system.particle_mass();
+  const double g = m_gamma, g2 = m_gamma * m_gamma;
+  const std::size_t n = m_jacobian.particle_x.size();
+  m_diagonal.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    m_diagonal[i] = mass * Mat3::Identity() - g * m_jacobian.particle_v[i] - g2 * m_jacobian.particle_x[i];
+  m_coupling.resize(m_jacobian.spring_x.size());
+  for (std::size_t e = 0; e < m_coupling.size(); ++e) {
+    const auto i = static_cast<std::size_t>(springs.first[static_cast<Eigen::Index>(e)]);
+    const auto j = static_cast<std::size_t>(springs.second[static_cast<Eigen::Index>(e)]);
+    const Mat3 c = g * m_jacobian.spring_v[e] + g2 * m_jacobian.spring_x[e];
+    // K's pair pattern [-J J; J -J] puts +C_e on both diagonal blocks of S. A fixed particle's
+    // row and column are dropped: its diagonal stays M and it couples to nobody.
+    m_diagonal[i] += c;
+    m_diagonal[j] += c;
+    m_coupling[e] = fixed[i] || fixed[j] ? Mat3::Zero() : c;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (fixed[i]) m_diagonal[i] = mass * Mat3::Identity();
   if (m_method == ReducedSolve::sparse_ldlt) {
-    m_ldlt.compute(m_s);
+    if (m_s.size() == 0) build_pattern();
+    assemble_matrix();
+    m_ldlt.factorize(m_s);
     return;
   }
-  const Eigen::Index n = n3 / 3;
-  m_block_inverse.assign(static_cast<std::size_t>(n), Mat3::Zero());
-  for (Eigen::Index col = 0; col < n3; ++col)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(m_s, col); it; ++it)
-      if (it.row() / 3 == col / 3) m_block_inverse[col / 3](it.row() % 3, col % 3) = it.value();
   // Each diagonal block is symmetric positive definite (a principal block of S).
-  for (Mat3& block : m_block_inverse) block = block.ldlt().solve(Mat3::Identity());
+  m_diagonal_inverse.resize(n);
+  for (std::size_t i = 0; i < n; ++i) m_diagonal_inverse[i] = m_diagonal[i].inverse();
 }
 
-bool ReducedNewtonSolver::solve(ConstVecRef r, VecRef z) {
+void ReducedNewtonSolver::build_pattern() {
+  // Column block q holds the row blocks of q itself and of its spring neighbours, ascending;
+  // its three columns share that row list. The pattern depends on the springs alone, so it and
+  // the fill-reducing ordering serve every later step, whatever the fixed set.
+  const SpringSet& springs = m_system.cloth().springs;
+  const int n = m_system.num_particles();
+  std::vector<std::vector<int>> rows(static_cast<std::size_t>(n));
+  for (int q = 0; q < n; ++q) rows[static_cast<std::size_t>(q)].push_back(q);
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    rows[static_cast<std::size_t>(springs.second[e])].push_back(springs.first[e]);
+    rows[static_cast<std::size_t>(springs.first[e])].push_back(springs.second[e]);
+  }
+  for (auto& list : rows) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  std::vector<Eigen::Index> column_start(static_cast<std::size_t>(n) + 1, 0);
+  for (std::size_t q = 0; q < rows.size(); ++q)
+    column_start[q + 1] = column_start[q] + 9 * static_cast<Eigen::Index>(rows[q].size());
+  const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(n);
+  m_s.resize(n3, n3);
+  m_s.resizeNonZeros(column_start.back());
+  auto* outer = m_s.outerIndexPtr();
+  auto* inner = m_s.innerIndexPtr();
+  for (std::size_t q = 0; q < rows.size(); ++q) {
+    const auto stride = 3 * static_cast<Eigen::Index>(rows[q].size());
+    for (Eigen::Index b = 0; b < 3; ++b) {
+      const Eigen::Index start = column_start[q] + b * stride;
+      outer[3 * q + static_cast<std::size_t>(b)] = static_cast<int>(start);
+      for (std::size_t k = 0; k < rows[q].size(); ++k)
+        for (int a = 0; a < 3; ++a)
+          inner[start + 3 * static_cast<Eigen::Index>(k) + a] = 3 * rows[q][k] + a;
+    }
+  }
+  outer[n3] = static_cast<int>(column_start.back());
+  auto slot = [&](int p, int q) {
+    const auto& list = rows[static_cast<std::size_t>(q)];
+    const auto rank = std::lower_bound(list.begin(), list.end(), p) - list.begin();
+    return BlockSlot{column_start[static_cast<std::size_t>(q)] + 3 * rank,
+                     3 * static_cast<Eigen::Index>(list.size())};
+  };
+  m_diagonal_slots.resize(static_cast<std::size_t>(n));
+  for (int q = 0; q < n; ++q) m_diagonal_slots[static_cast<std::size_t>(q)] = slot(q, q);
+  m_spring_slots.resize(2 * static_cast<std::size_t>(springs.size()));
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    m_spring_slots[2 * static_cast<std::size_t>(e)] = slot(springs.first[e], springs.second[e]);
+    m_spring_slots[2 * static_cast<std::size_t>(e) + 1] = slot(springs.second[e], springs.first[e]);
+  }
+  m_s.coeffs().setZero();
+  m_ldlt.analyzePattern(m_s);
+}
+
+void ReducedNewtonSolver::assemble_matrix() {
+  double* values = m_s.valuePtr();
+  // Accumulated, not written: two springs may join the same pair.
+  std::fill(values, values + m_s.nonZeros(), 0.0);
+  auto add = [&](const BlockSlot& slot, const Mat3& block) {
+    for (Eigen::Index b = 0; b < 3; ++b)
+      for (Eigen::Index a = 0; a < 3; ++a) values[slot.base + b * slot.stride + a] += block(a, b);
+  };
+  for (std::size_t i = 0; i < m_diagonal.size(); ++i) add(m_diagonal_slots[i], m_diagonal[i]);
+  for (std::size_t e = 0; e < m_coupling.size(); ++e) {
+    add(m_spring_slots[2 * e], -m_coupling[e]);
+    add(m_spring_slots[2 * e + 1], -m_coupling[e].transpose());
+  }
+}
+
+void ReducedNewtonSolver::multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const {
+  const SpringSet& springs = m_system.cloth().springs;
+  out.resize(p.size());
+  for (std::size_t i = 0; i < m_diagonal.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    particle(out, k).noalias() = m_diagonal[i] * particle(p, k);
+  }
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    const Mat3& c = m_coupling[static_cast<std::size_t>(e)];
+    const int i = springs.first[e], j = springs.second[e];
+    // C_e is symmetric: the definite Jacobian has no damping position term.
+    particle(out, i).noalias() -= c * particle(p, j);
+    particle(out, j).noalias() -= c * particle(p, i);
+  }
+}
+
+void ReducedNewtonSolver::jacobian_times(ConstVecRef r_x, const Eigen::VectorXd& w,
+                                         Eigen::VectorXd& out) const {
+  const SpringSet& springs = m_system.cloth().springs;
+  out.resize(r_x.size());
+  for (std::size_t i = 0; i < m_jacobian.particle_x.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    particle(out, k).noalias() =
+        m_jacobian.particle_x[i] * particle(r_x, k) + m_jacobian.particle_v[i] * particle(w, k);
+  }
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    const auto s = static_cast<std::size_t>(e);
+    const int i = springs.first[e], j = springs.second[e];
+    const Vec3 df = m_jacobian.spring_x[s] * (particle(r_x, j) - particle(r_x, i)) +
+                    m_jacobian.spring_v[s] * (particle(w, j) - particle(w, i));
+    particle(out, i) += df;
+    particle(out, j) -= df;
+  }
+}
+
+bool ReducedNewtonSolver::solve(ConstVecRef r, VecRef z, CgStart start) {
   const Eigen::Index n3 = r.size() / 2;
   const auto r_x = r.head(n3), r_v = r.tail(n3);
+  const ConstraintSet& constraints = m_system.constraints();
   // b = M r_v + gamma (K r_x + D r_v|fixed): the fixed particles' known z enters through the
-  // columns of K and D, whose fixed rows are zero.
-  m_fixed_r_v = r_v;
-  for (Eigen::Index i = 0; i < n3 / 3; ++i)
-    if (!m_system.constraints().is_fixed(static_cast<int>(i))) particle(m_fixed_r_v, i).setZero();
-  m_b = m_system.particle_mass() * r_v + m_gamma * (m_dfdx * r_x + m_dfdv * m_fixed_r_v);
-  m_system.constraints().zero_fixed(m_b);
-  const bool converged = solve_reduced(m_b, m_z_v);
-  for (const int i : m_system.constraints().fixed_particles()) particle(m_z_v, i) = particle(r_v, i);
+  // columns of K and D, whose fixed rows are dropped.
+  m_fixed_r_v.setZero(n3);
+  for (const int i : constraints.fixed_particles()) particle(m_fixed_r_v, i) = particle(r_v, i);
+  jacobian_times(r_x, m_fixed_r_v, m_product);
+  m_b = m_system.particle_mass() * r_v + m_gamma * m_product;
+  constraints.zero_fixed(m_b);
+  const bool converged = solve_reduced(m_b, m_z_v, start);
   z.tail(n3) = m_z_v;
   z.head(n3) = r_x + m_gamma * m_z_v;
-  for (const int i : m_system.constraints().fixed_particles())
+  for (const int i : constraints.fixed_particles()) {
+    particle(z.tail(n3), i) = particle(r_v, i);
     particle(z.head(n3), i) = particle(r_x, i);
+  }
   return converged;
 }
 
-bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v) {
+bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v,
+                                        CgStart start) {
   if (m_method == ReducedSolve::sparse_ldlt) {
     z_v = m_ldlt.solve(b);
     return m_ldlt.info() == Eigen::Success;
   }
-  // Preconditioned conjugate gradients from z = 0 (Shewchuk 1994, B2), stopping at
-  // |b - S z| <= tolerance |b|.
+  // Preconditioned conjugate gradients (Shewchuk 1994, B2), stopping at |b - S z| <= tolerance
+  // |b|. The iterates stay zero on fixed particles: b and the preconditioner are zero there.
   const Eigen::Index n = b.size() / 3;
   auto precondition = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
     out.resize(in.size());
     for (Eigen::Index i = 0; i < n; ++i)
-      particle(out, i) = m_block_inverse[static_cast<std::size_t>(i)] * particle(in, i);
+      particle(out, i).noalias() = m_diagonal_inverse[static_cast<std::size_t>(i)] * particle(in, i);
   };
-  z_v.setZero(b.size());
   const double b_norm = b.norm();
-  if (b_norm == 0.0) return true;
-  m_residual = b;
+  if (b_norm == 0.0) {
+    z_v.setZero(b.size());
+    return true;
+  }
+  if (start == CgStart::previous && z_v.size() == b.size()) {
+    m_system.constraints().zero_fixed(z_v);
+    multiply(z_v, m_product);
+    m_residual = b - m_product;
+  } else {
+    z_v.setZero(b.size());
+    m_residual = b;
+  }
+  if (m_residual.norm() <= m_tolerance * b_norm) return true;
   precondition(m_residual, m_preconditioned);
   m_direction = m_preconditioned;
   double rho = m_residual.dot(m_preconditioned);
   for (int k = 0; k < m_max_iterations; ++k) {
-    m_product.noalias() = m_s * m_direction;
+    multiply(m_direction, m_product);
     const double alpha = rho / m_direction.dot(m_product);
     z_v += alpha * m_direction;
     m_residual -= alpha * m_product;

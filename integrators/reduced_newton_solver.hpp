@@ -8,6 +8,11 @@
 // on the free particles, then z_x = r_x + gamma z_v; a fixed particle keeps z = r. S uses the
 // definite Jacobian (forces.hpp), so it is symmetric positive definite: conjugate gradients or
 // a sparse Cholesky factorisation solve it (Baraff and Witkin 1998, section 5).
+//
+// S has the spring graph's 3x3 block sparsity, which never changes: a spring e = (i, j) with
+// Jacobian blocks K_e, D_e couples i and j through -C_e, C_e = gamma D_e + gamma^2 K_e, and adds
+// C_e to both diagonal blocks. CG multiplies by S block by block without assembling it; the
+// factorisation fills a compressed matrix whose pattern and symbolic analysis are built once.
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <optional>
@@ -24,6 +29,12 @@ enum class ReducedSolve {
   sparse_ldlt,          ///< `sparse-direct`: Eigen's SimplicialLDLT factorisation of S
 };
 
+/// Where conjugate gradients start.
+enum class CgStart {
+  zero,      ///< z_v = 0 (a preconditioner: every right-hand side is unrelated to the last)
+  previous,  ///< the last solve's z_v (implicit Euler: the previous step's dv, a warm start)
+};
+
 /// The method `integrator.linear_solver` names, or nothing for an unknown name.
 std::optional<ReducedSolve> reduced_solve_named(const std::string& name);
 /// Every accepted `integrator.linear_solver` name, comma separated (for error messages).
@@ -36,7 +47,7 @@ class ReducedNewtonSolver {
   ReducedNewtonSolver(const ClothSystem& system, ReducedSolve method, ForceSplit split,
                       double tolerance, int max_iterations);
 
-  /// Assembles the definite K and D at (x, v) and forms S for `gamma`.
+  /// Evaluates the definite K and D blocks at (x, v) and forms S for `gamma`.
   void update(ConstVecRef x, ConstVecRef v, double gamma);
   /// Forms S for a new gamma from the last K and D.
   void set_gamma(double gamma);
@@ -47,13 +58,24 @@ class ReducedNewtonSolver {
   void invalidate() { m_has_jacobian = false; }
   /// z = (I - gamma J)^-1 r for 6N vectors; false when CG stopped before its tolerance (z is
   /// then its last iterate).
-  bool solve(ConstVecRef r, VecRef z);
+  bool solve(ConstVecRef r, VecRef z, CgStart start = CgStart::zero);
   /// CG iterations over all solves so far (0 for the direct solve).
   long iterations() const { return m_iterations; }
 
  private:
+  /// Where a 3x3 block of S lives in m_s: entry (a, b) at values[base + b * stride + a].
+  struct BlockSlot {
+    Eigen::Index base = 0, stride = 0;
+  };
+
   void form_system();
-  bool solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v);
+  void build_pattern();
+  void assemble_matrix();
+  /// out = S p, block by block.
+  void multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const;
+  /// out = K r_x + D w with the unclamped columns of fixed particles (rows not zeroed).
+  void jacobian_times(ConstVecRef r_x, const Eigen::VectorXd& w, Eigen::VectorXd& out) const;
+  bool solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v, CgStart start);
 
   const ClothSystem& m_system;
   ReducedSolve m_method;
@@ -63,8 +85,13 @@ class ReducedNewtonSolver {
   double m_gamma = 0.0;
   bool m_has_jacobian = false;
   long m_iterations = 0;
-  Eigen::SparseMatrix<double> m_dfdx, m_dfdv, m_s;
-  std::vector<Mat3> m_block_inverse;  // block-Jacobi preconditioner of CG
+  JacobianBlocks m_jacobian;
+  std::vector<Mat3> m_coupling;  // C_e, zero when an end is fixed (S_ij = -C_e on free pairs)
+  std::vector<Mat3> m_diagonal;  // S_ii (M on a fixed particle)
+  std::vector<Mat3> m_diagonal_inverse;  // block-Jacobi preconditioner of CG
+  // sparse-direct only: S in a pattern built once, its blocks' slots, the symbolic analysis.
+  Eigen::SparseMatrix<double> m_s;
+  std::vector<BlockSlot> m_diagonal_slots, m_spring_slots;  // spring e: (i, j) at 2e, (j, i) at 2e+1
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> m_ldlt;
   Eigen::VectorXd m_b, m_z_v, m_fixed_r_v, m_residual, m_direction, m_preconditioned, m_product;
 };

@@ -86,7 +86,11 @@ void validate_integrator_choice(const IntegratorOptions& options, const std::str
       throw InputError(file, path + ".table",
                        "'" + options.table + "' has no embedded method: adaptive steps need one");
   }
-  if (!reduced_solve_named(options.linear_solver))
+  const IntegratorInfo* info = find_integrator(options.name);
+  if (info && info->kind == "explicit" && !options.linear_solver.empty())
+    throw InputError(file, path + ".linear_solver",
+                     "integrator '" + options.name + "' is explicit: it solves no linear systems");
+  if (!reduced_solve_named(linear_solver_of(options)))
     throw InputError(file, path + ".linear_solver",
                      "unknown linear solver '" + options.linear_solver +
                          "' (one of: " + reduced_solve_names() + ")");
