@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "core/cloth_system.hpp"
+#include "core/dummy_sources.hpp"
 #include "test_support.hpp"
 
 namespace drape {
@@ -116,6 +117,49 @@ TEST(ClothSystem, FixedParticlesFollowTheirPrescribedMotionInRhsAndProjection) {
   s.constraints().release(3);
   EXPECT_FALSE(s.constraints().is_fixed(3));
   EXPECT_TRUE(s.constraints().fixed_particles().empty());
+}
+
+// The IMEX split: springs plus the rest is every force, for forces, Jacobians and right-hand
+// sides, on a cloth in contact with an object (the rest includes collision) with a fixed particle.
+TEST(ClothSystem, SpringAndNonSpringPartsAddUpToAll) {
+  ClothParams p = testing::small_cloth(4, 5);
+  p.damping_spring = 0.05;
+  p.damping_air = 0.01;
+  // A sphere just behind the cloth's plane: most particles are within the collision threshold.
+  const auto sphere = std::make_shared<const Dummy>(make_dummy(
+      nlohmann::json{{"builtin", "sphere"}, {"radius", 0.05}, {"center", {0.04, 0.97, -0.054}}},
+      "test", "dummy", "."));
+  ClothSystem s(build_cloth(p), sphere, ForceParams{});
+  s.constraints().fix_at(0, s.cloth().rest_positions.segment<3>(0));
+  const Eigen::Index n3 = 3 * s.num_particles();
+  const Eigen::VectorXd x = jitter(s.cloth().rest_positions, 0.003, 11);
+  const Eigen::VectorXd v = jitter(Eigen::VectorXd::Zero(n3), 0.3, 12);
+  ASSERT_GT(s.energy(x, v).collision, 0.0);
+
+  auto parts = [&](auto evaluate) {
+    Eigen::VectorXd all(n3), springs(n3), rest(n3);
+    evaluate(ForceSplit::all, all);
+    evaluate(ForceSplit::springs, springs);
+    evaluate(ForceSplit::non_springs, rest);
+    EXPECT_LT((springs + rest - all).norm(), 1e-12 * all.norm());
+    EXPECT_GT(springs.norm(), 0.0);
+    EXPECT_GT(rest.norm(), 0.0);
+  };
+  parts([&](ForceSplit split, Eigen::VectorXd& f) { s.forces(x, v, f, split); });
+  const Eigen::VectorXd dx = jitter(Eigen::VectorXd::Zero(n3), 1.0, 13);
+  const Eigen::VectorXd dv = jitter(Eigen::VectorXd::Zero(n3), 1.0, 14);
+  for (const bool definite : {false, true})
+    parts([&](ForceSplit split, Eigen::VectorXd& out) {
+      s.force_jacobian_times(x, v, dx, dv, out, definite, split);
+    });
+
+  Eigen::VectorXd y(2 * n3);
+  y << x, v;
+  Eigen::VectorXd all(2 * n3), springs(2 * n3), rest(2 * n3);
+  s.rhs(0.0, y, all, ForceSplit::all);
+  s.rhs(0.0, y, springs, ForceSplit::springs);
+  s.rhs(0.0, y, rest, ForceSplit::non_springs);
+  EXPECT_LT((springs + rest - all).norm(), 1e-12 * all.norm());
 }
 
 }  // namespace

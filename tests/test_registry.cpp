@@ -83,6 +83,13 @@ TEST(Registry, RejectsBadTablesAndLinearSolvers) {
   IntegratorOptions bad_solver = options("arkode-dirk");
   bad_solver.linear_solver = "dense";
   EXPECT_EQ(rejected_field(bad_solver), "integrator.linear_solver");
+  // An explicit integrator solves nothing: a linear solver for it is a mistake in the scene.
+  for (const char* name : {"leapfrog", "symplectic-euler", "arkode-erk"}) {
+    IntegratorOptions solver_for_explicit = options(name);
+    solver_for_explicit.linear_solver = "pcg-reduced";
+    EXPECT_EQ(rejected_field(solver_for_explicit), "integrator.linear_solver") << name;
+  }
+  EXPECT_EQ(rejected_field(options("leapfrog")), "");
 }
 
 TEST(Registry, MakesEveryIntegrator) {
