@@ -23,7 +23,10 @@ std::string read_text(const fs::path& file) {
 }
 
 Result drapelab(const std::string& args) {
-  const fs::path err = fs::path(::testing::TempDir()) / "drapelab_stderr.txt";
+  // ctest runs tests in parallel processes: each test gets its own stderr file.
+  const fs::path err = fs::path(::testing::TempDir()) /
+                       (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                        "_stderr.txt");
   const std::string cmd = std::string(DRAPELAB_EXE) + " " + args + " 2> " + err.string() + " > /dev/null";
   const int status = std::system(cmd.c_str());
   return {WEXITSTATUS(status), read_text(err)};
