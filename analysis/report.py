@@ -20,8 +20,10 @@ from drapeanalysis import metrics, plots, runfiles
 TABLE_COLUMNS = (
     "status", "steps", "rhs_evals", "wall_seconds", "energy_drift_max_rel",
     "energy_drift_final_rel", "energy_drift_exponent", "attach_error_mean", "vibration_rms_final",
-    "settle_time", "contact_switch_rate_final", "hand_jitter_rms_final", "mapping_gap_mean_final",
-    "spring_strain_max_final", "error_rms", "stable_value",
+    "vibration_rms_events", "vibration_rms_holding", "hand_jitter_rms_holding", "settle_time", "contact_switch_rate_final", "hand_jitter_rms_final",
+    "mapping_gap_mean_mapped", "mapping_gap_mean_final", "mapping_gap_max_final",
+    "spring_strain_rms_mapped", "spring_strain_rms_final", "spring_strain_max_final", "error_rms",
+    "error_max", "stable_value",
 )
 
 
@@ -89,24 +91,48 @@ CAPTIONS = {
     "energy_vs_time": "Relative energy error against time, one panel per integrator.",
     "work_precision": "RMS error of the final positions against the reference run, against "
                       "right-hand-side evaluations and wall time.",
-    "attach_error_vs_iterations": "Attach error against attach_iterations.",
-    "vibration_vs_dt": "High-frequency RMS motion of the free cloth particles over the last "
-                       "window of the run, against the step size.",
+    "energy_by_scene": "Total energy E(t) - E(0) of every method (reference run dashed black), one "
+                       "panel per scene; dotted lines: manipulations. Driven, damped scenes do not "
+                       "conserve energy: the methods are compared with each other.",
+    "attach_error_vs_iterations": "Attach error |x - (p_o + delta n_o)| against "
+                                  "manipulation.attach_iterations (paper Figure 5).",
+    "attach_error_vs_time": "The same attach error against the simulated time the attached "
+                            "particle was left to settle (attach_iterations x dt).",
+    "vibration_vs_dt": "High-frequency RMS motion of the free cloth particles over the last 0.5 s "
+                       "of the run, against the step size; one panel per scene (and collision "
+                       "model), one line per integrator and the other swept values.",
+    "vibration_events_vs_dt": "The same, largest over the windows after each manipulation.",
+    "contact_switch_vs_dt": "Changes of a particle's nearest object particle in contact per free "
+                            "particle and second, last 0.5 s, against the step size.",
     "stable_dt": "Largest stable step found by bisection.",
 }
 
 
 def make_figures(directory, out_dir, rows, parameters):
     """Every figure the table supports, as (stem, caption)."""
+    def settle_time(row):
+        return plots.number(row.get("manipulation.attach_iterations")) * plots.number(row.get("dt"))
+
+    detail = plots.INTEGRATOR_DETAIL[1:]
     figures = [
         ("energy_vs_time", plots.energy_vs_time(directory, out_dir, rows, parameters)),
+        ("energy_by_scene", plots.energy_by_scene(directory, out_dir, rows, parameters)),
         ("work_precision", plots.work_precision(out_dir, rows, parameters)),
         ("attach_error_vs_iterations", plots.line_plot(
             out_dir, "attach_error_vs_iterations", rows, parameters, "manipulation.attach_iterations",
-            "attach_error_mean", "attach iterations", "attach error [m]")),
-        ("vibration_vs_dt", plots.line_plot(
-            out_dir, "vibration_vs_dt", rows, parameters, "integrator.dt", "vibration_rms_final",
-            "dt [s]", "vibration RMS [m]")),
+            "attach_error_mean", "attach iterations", "attach error [m]", exclude=detail)),
+        ("attach_error_vs_time", plots.line_plot(
+            out_dir, "attach_error_vs_time", rows, parameters, settle_time, "attach_error_mean",
+            "attach_iterations x dt [s]", "attach error [m]",
+            exclude=detail + ("manipulation.attach_iterations",))
+         if "manipulation.attach_iterations" in parameters else None),
+        ("vibration_vs_dt", plots.vibration_vs_dt(out_dir, rows, parameters)),
+        ("vibration_events_vs_dt", plots.vibration_vs_dt(
+            out_dir, rows, parameters, "vibration_rms_events", "vibration RMS, after events [m]",
+            "vibration_events_vs_dt")),
+        ("contact_switch_vs_dt", plots.vibration_vs_dt(
+            out_dir, rows, parameters, "contact_switch_rate_final",
+            "contact switches [1/(particle s)]", "contact_switch_vs_dt")),
         ("stable_dt", plots.stable_dt(out_dir, rows, parameters)),
     ]
     out = [(stem, CAPTIONS[name]) for name, stem in figures if stem]

@@ -127,6 +127,20 @@ def vibration(run, summary, window=VIBRATION_WINDOW):
            for key in ("vibration_rms", "vibration_velocity_rms", "contact_switch_rate", "hand_jitter_rms")}
     events = [w for w in windows if "vibration_rms" in w]
     out["vibration_rms_events"] = max((w["vibration_rms"] for w in events), default=math.nan)
+    # Steady holding: from `window` seconds after a hold (its transient gone) to the next event;
+    # vibration that follows the hand here, with hand_jitter_rms, is the sensor's.
+    holding = []
+    holds = sorted(float(e["t"]) for e in summary.get("events", []) if e.get("type") == "hold")
+    for t0 in holds:
+        later = [t for t in times if t > t0 + 1e-12]
+        t1 = min(later[0] if later else end, end)
+        if t1 - (t0 + window) >= window:
+            holding.append(vibration_window(trace, t0 + window, t1, hands))
+    holding = [w for w in holding if "vibration_rms" in w]
+    worst = max(holding, key=lambda w: w["vibration_rms"], default={})
+    out["vibration_rms_holding"] = worst.get("vibration_rms", math.nan)
+    out["vibration_velocity_rms_holding"] = worst.get("vibration_velocity_rms", math.nan)
+    out["hand_jitter_rms_holding"] = worst.get("hand_jitter_rms", math.nan)
     # Without events the cloth settles from its start; with events, from the slowest event.
     settling = events if times else [vibration_window(trace, 0.0, end, hands)]
     settle = [w.get("settle_time", math.nan) for w in settling]
