@@ -87,7 +87,7 @@ int ClothSystem::project(double t, VecRef x, VecRef v) const {
     for (int i = 0; i < num_particles(); ++i) {
       if (fixed[i]) continue;
       Vec3 xi = particle(x, i), vi = particle(v, i);
-      if (!m_collision.correct_penetration(xi, vi)) continue;
+      if (!m_collision.correct_penetration(i, xi, vi)) continue;
       particle(x, i) = xi;
       particle(v, i) = vi;
       ++corrected;

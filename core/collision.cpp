@@ -55,7 +55,9 @@ Collision::Collision(std::shared_ptr<const Dummy> dummy, const CollisionParams& 
                      int num_particles)
     : m_dummy(std::move(dummy)),
       m_params(params),
-      m_contacts(m_dummy, params.threshold, m_dummy ? num_particles : 0) {}
+      m_contacts(m_dummy, params.threshold, m_dummy ? num_particles : 0),
+      m_outside_anchor(Eigen::VectorXd::Zero(m_dummy ? 3 * num_particles : 0)),
+      m_outside_margin2(Eigen::VectorXd::Constant(m_dummy ? num_particles : 0, -1.0)) {}
 
 Vec3 Collision::force(int i, const Vec3& x) const {
   if (!m_dummy) return Vec3::Zero();
@@ -93,8 +95,18 @@ Mat3 Collision::jacobian(int i, const Vec3& x, bool definite) const {
   return collision_jacobian(x - m_dummy->position(hit.index), k, delta, definite);
 }
 
-bool Collision::correct_penetration(Vec3& x, Vec3& v) const {
+bool Collision::correct_penetration(int i, Vec3& x, Vec3& v) const {
   if (!m_dummy) return false;
+  // Both models' inside is the radial gap below 0 between the end sections: nothing within the
+  // margin of the anchor is.
+  auto anchor = m_outside_anchor.segment<3>(3 * i);
+  if ((x - anchor).squaredNorm() < m_outside_margin2[i]) return false;
+  const double margin = m_dummy->outside_margin(x);
+  if (margin > 0.0) {
+    anchor = x;
+    m_outside_margin2[i] = margin * margin;
+    return false;
+  }
   Vec3 normal;
   if (m_params.model == CollisionModel::surface) {
     const auto g = m_dummy->surface_gap(x);

@@ -78,14 +78,19 @@ class Collision {
   /// dF/dx of cloth particle i at x. The surface model uses the Gauss-Newton part
   /// -k grad g grad g^T (it drops the surface's curvature term), definite either way.
   Mat3 jacobian(int i, const Vec3& x, bool definite) const;
-  /// Moves a particle found inside the object out of it and removes its inward normal
+  /// Moves cloth particle i, found inside the object, out of it and removes its inward normal
   /// velocity; returns whether it was inside.
-  bool correct_penetration(Vec3& x, Vec3& v) const;
+  bool correct_penetration(int i, Vec3& x, Vec3& v) const;
 
  private:
   std::shared_ptr<const Dummy> m_dummy;
   CollisionParams m_params;
   ContactFinder m_contacts;
+  // Per cloth particle, a point and a distance within which nothing is inside the object
+  // (Dummy::outside_margin): a fact about space, true whatever the particle does, so a particle
+  // still within it needs no penetration test. Mutable like ContactFinder's lists.
+  mutable Eigen::VectorXd m_outside_anchor;   // 3N
+  mutable Eigen::VectorXd m_outside_margin2;  // N, squared; -1 before the first test
 };
 
 }  // namespace drape

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -10,6 +11,33 @@ namespace drape {
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+// The gap phi = r_h - R(y, theta) of a point whose horizontal distance from the axis is r_h, over
+// the whole stack (y clamped, so phi does not change with y above or below it). Its gradient:
+//   horizontal part: radial - (dR/dtheta / r_h) tangent, norm <= 1 + S / r_h;
+//   d/dy: -radial . c'(y) - dR/dy - dR/dtheta (tangent . c'(y)) / r_h, |.| <= A + D + S A / r_h;
+// with S = max |dR/dtheta| (the steepest edge between neighbouring particles of a section),
+// D = max |dR/dy| (the largest change of one column's radius over a section gap, per metre) and
+// A = max |c'(y)| (the steepest lean of the axis between two sections). Where phi >= 0,
+// r_h >= R >= R_min, the smallest radius, so there |grad phi| <= L = 1 + A + D + S (1 + A) / R_min.
+// A straight path from a point with phi > 0 to one inside crosses phi = 0 first, and phi >= 0 on
+// the way, so it is at least phi / L long (phi is continuous and piecewise smooth: its kinks at
+// sections and particle angles do not matter).
+double gap_lipschitz_constant(const DummySections& s) {
+  const int n = s.num_sections(), m = s.points();
+  const double r_min = s.radius.minCoeff();
+  if (!(r_min > 0.0)) return std::numeric_limits<double>::infinity();
+  double axis = 0.0, height = 0.0, angle = 0.0;
+  for (int k = 0; k + 1 < n; ++k) {
+    const double dy = s.y[k] - s.y[k + 1];
+    axis = std::max(axis, std::hypot(s.cx[k] - s.cx[k + 1], s.cz[k] - s.cz[k + 1]) / dy);
+    height = std::max(height, (s.radius.row(k) - s.radius.row(k + 1)).cwiseAbs().maxCoeff() / dy);
+  }
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < m; ++j)
+      angle = std::max(angle, std::abs(s.radius(k, (j + 1) % m) - s.radius(k, j)) * m / kTwoPi);
+  return 1.0 + axis + height + angle * (1.0 + axis) / r_min;
+}
 
 void check_sections(const DummySections& s) {
   const int n = s.num_sections();
@@ -50,6 +78,7 @@ Dummy::Dummy(DummySections sections) : m_sections(std::move(sections)) {
   m_max_radius = m_sections.radius.rowwise().maxCoeff();
   const double height = m_sections.y.front() - m_sections.y.back();
   m_sections_per_metre = (n - 1) / height;
+  m_lipschitz = gap_lipschitz_constant(m_sections);
 
   // Cell size from the particle spacing, so that the work per query does not grow with the
   // resolution: twice the geometric mean of the section spacing and the mean arc between
@@ -194,6 +223,24 @@ bool Dummy::inside(const Vec3& p) const {
   const double theta = std::atan2(dx, dz);
   const double r = (1.0 - t) * section_radius(k, theta) + t * section_radius(k + 1, theta);
   return d2 < r * r;
+}
+
+double Dummy::outside_margin(const Vec3& p) const {
+  const auto& ys = m_sections.y;
+  // Above the top or below the bottom section nothing is inside until y reaches the stack.
+  const double out_of_range = std::max(p.y() - ys.front(), ys.back() - p.y());
+  double t = 0.0;
+  const int k = bracket(p.y(), t);
+  const double dx = p.x() - ((1.0 - t) * m_sections.cx[k] + t * m_sections.cx[k + 1]);
+  const double dz = p.z() - ((1.0 - t) * m_sections.cz[k] + t * m_sections.cz[k + 1]);
+  const double theta = std::atan2(dx, dz);
+  const double gap = std::sqrt(dx * dx + dz * dz) -
+                     ((1.0 - t) * section_radius(k, theta) + t * section_radius(k + 1, theta));
+  const double margin = std::max(out_of_range, gap / m_lipschitz);
+  // The guard, far above the round-off of inside() and of this function for points within
+  // metres of the origin, keeps a point whose margin we trust away from the surface.
+  constexpr double guard = 1e-9;
+  return margin > guard ? margin - guard : 0.0;
 }
 
 }  // namespace drape

@@ -76,6 +76,13 @@ class Dummy {
   /// True when p lies between the top and bottom sections and its horizontal distance from the
   /// interpolated axis is below the surface radius at its angle (SPEC 4, penetration).
   bool inside(const Vec3& p) const;
+  /// A distance within which no point is inside(): every q with |q - p| < outside_margin(p) has
+  /// inside(q) false. 0 when p is inside or too near the surface to say (a lower bound, from a
+  /// Lipschitz constant of the gap; see lipschitz_constant()).
+  double outside_margin(const Vec3& p) const;
+  /// L with |phi(p) - phi(q)| <= L |p - q| for the radial gap phi = r_h - R(y, theta) (y clamped
+  /// to the stack) wherever phi >= 0; infinite when a radius is 0.
+  double lipschitz_constant() const { return m_lipschitz; }
 
  private:
   /// Section k with y_k >= y >= y_{k+1} (y clamped to the stack) and the weight t of k + 1.
@@ -92,6 +99,7 @@ class Dummy {
   Eigen::VectorXd m_min_radius;       // per section: cheap bounds that decide most inside() calls
   Eigen::VectorXd m_max_radius;
   double m_sections_per_metre = 0.0;  // first guess of the bracketing section from a height
+  double m_lipschitz = 0.0;           // of the radial gap, for outside_margin()
 };
 
 }  // namespace drape

@@ -73,6 +73,76 @@ Dummy leaning_stack() {
   return Dummy(s);
 }
 
+// Penetration decisions with the cached outside margins equal Dummy::inside along random walks
+// that cross the surface and the end sections, with steps below and far above the margins.
+void expect_penetration_tests_equal_inside(const std::shared_ptr<const Dummy>& dummy) {
+  const int walkers = 200;
+  const Collision collision(dummy, {0.01, 100.0, CollisionModel::particle}, walkers);
+  const auto& ys = dummy->sections().y;
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> x(walkers);
+  for (int w = 0; w < walkers; ++w) {
+    const double y = 0.5 * (ys.front() + ys.back()) + 0.55 * (ys.front() - ys.back()) * u(rng);
+    const double theta = 3.2 * u(rng);
+    const Eigen::Vector2d axis = dummy->axis_at(y);
+    const double r = dummy->surface_radius(y, theta) + 0.01 * u(rng);
+    x[w] = Vec3(axis.x() + r * std::sin(theta), y, axis.y() + r * std::cos(theta));
+  }
+  int inside = 0, outside = 0;
+  for (int step = 0; step < 400; ++step) {
+    const double size = step % 50 == 49 ? 0.02 : 2e-4 * (1 + step % 7);
+    for (int w = 0; w < walkers; ++w) {
+      x[w] += size * Vec3(u(rng), u(rng), u(rng));
+      Vec3 corrected = x[w], v = Vec3::Zero();
+      const bool expected = dummy->inside(x[w]);
+      ASSERT_EQ(collision.correct_penetration(w, corrected, v), expected)
+          << "step " << step << " walker " << w;
+      ++(expected ? inside : outside);
+    }
+  }
+  EXPECT_GT(inside, 5000);
+  EXPECT_GT(outside, 5000);
+}
+
+TEST(PenetrationCorrection, EqualsInsideAlongRandomWalksOnTheDressForm) {
+  expect_penetration_tests_equal_inside(std::make_shared<const Dummy>(
+      make_dummy(nlohmann::json{{"builtin", "dress-form"}}, "test", "dummy", ".")));
+}
+
+TEST(PenetrationCorrection, EqualsInsideAlongRandomWalksOnALeaningStack) {
+  expect_penetration_tests_equal_inside(std::make_shared<const Dummy>(leaning_stack()));
+}
+
+TEST(DummyOutsideMargin, NoPointWithinTheMarginIsInside) {
+  for (const Dummy& dummy : {leaning_stack(), make_dummy(nlohmann::json{{"builtin", "dress-form"}},
+                                                         "test", "dummy", ".")}) {
+    const auto& ys = dummy.sections().y;
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
+    int useful = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+      const double y = 0.5 * (ys.front() + ys.back()) + 0.6 * (ys.front() - ys.back()) * u(rng);
+      const double theta = 3.2 * u(rng);
+      const Eigen::Vector2d axis = dummy.axis_at(y);
+      const double r = dummy.surface_radius(y, theta) + 0.03 * u(rng);
+      const Vec3 p(axis.x() + r * std::sin(theta), y, axis.y() + r * std::cos(theta));
+      const double margin = dummy.outside_margin(p);
+      if (margin == 0.0) continue;
+      ASSERT_FALSE(dummy.inside(p));
+      ++useful;
+      // Points towards the surface and anywhere, out to just below the margin.
+      for (int k = 0; k < 20; ++k) {
+        const Vec3 direction = k % 2 ? Vec3(u(rng), u(rng), u(rng)).normalized()
+                                     : Vec3(axis.x() - p.x(), 0.0, axis.y() - p.z()).normalized();
+        const double reach = k < 10 ? margin * (1.0 - 1e-12) : margin * unit(rng);
+        ASSERT_FALSE(dummy.inside(p + reach * direction)) << "trial " << trial << " k " << k;
+      }
+    }
+    EXPECT_GT(useful, 500);
+  }
+}
+
 TEST(SurfaceCollision, ForceIsMinusEnergyGradient) {
   const auto dummy = std::make_shared<const Dummy>(leaning_stack());
   const CollisionParams params{0.02, 300.0, CollisionModel::surface};
@@ -131,7 +201,7 @@ TEST(PenetrationCorrection, ParticleInsideEndsOutsideForBothModels) {
       Vec3 x(axis.x() + r * std::sin(theta), y, axis.y() + r * std::cos(theta));
       Vec3 v(-std::sin(theta), -0.5, -std::cos(theta));  // moving inwards and down
       ASSERT_TRUE(dummy->inside(x));
-      ASSERT_TRUE(collision.correct_penetration(x, v));
+      ASSERT_TRUE(collision.correct_penetration(0, x, v));
       // On the surface (an object particle, or the surface point itself) or outside it: a
       // round-off below zero is the surface.
       EXPECT_GE(dummy->surface_gap(x)->gap, -1e-12) << "trial " << trial;
