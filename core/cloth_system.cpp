@@ -22,17 +22,40 @@ Eigen::VectorXd ClothSystem::initial_state(double t) const {
   return y;
 }
 
+namespace {
+
+// The spring loop, without the velocity loads of spring damping when it is off.
+template <bool damped>
+void add_spring_forces(const SpringSet& springs, ConstVecRef x, ConstVecRef v, double c_spring,
+                       VecRef f) {
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    const int i = springs.first[e], j = springs.second[e];
+    const Vec3 force = spring_pair_force<damped>(particle(x, j) - particle(x, i),
+                                                 particle(v, j) - particle(v, i),
+                                                 springs.stiffness[e], springs.rest[e], c_spring);
+    particle(f, i) += force;
+    particle(f, j) -= force;
+  }
+}
+
+}  // namespace
+
 void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f) const {
   forces(x, v, f, ForceSplit::all);
 }
 
 void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit split) const {
+  evaluate_forces<false>(x, v, f, split);
+}
+
+template <bool per_mass>
+void ClothSystem::evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit split) const {
   const bool with_springs = split != ForceSplit::non_springs;
   const bool with_rest = split != ForceSplit::springs;
-  const SpringSet& springs = m_cloth.springs;
   const double c_spring = m_cloth.params.damping_spring;
   const double c_air = m_cloth.params.damping_air;
-  const Vec3 weight = particle_mass() * m_params.gravity;
+  const double m = particle_mass();
+  const Vec3 weight = m * m_params.gravity;
   const int n = num_particles();
 
   if (with_rest)
@@ -40,23 +63,27 @@ void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit spli
   else
     f.setZero();
 
-  for (Eigen::Index e = 0; with_springs && e < springs.size(); ++e) {
-    const int i = springs.first[e], j = springs.second[e];
-    const Vec3 force = spring_pair_force(particle(x, j) - particle(x, i),
-                                         particle(v, j) - particle(v, i), springs.stiffness[e],
-                                         springs.rest[e], c_spring);
-    particle(f, i) += force;
-    particle(f, j) -= force;
-  }
+  if (with_springs && c_spring != 0.0)
+    add_spring_forces<true>(m_cloth.springs, x, v, c_spring, f);
+  else if (with_springs)
+    add_spring_forces<false>(m_cloth.springs, x, v, c_spring, f);
 
-  if (!m_dummy || !with_rest) return;
-  for (int i = 0; i < n; ++i) particle(f, i) += m_collision.force(i, particle(x, i));
+  // The last pass over particles: collision, then the division by the mass (a separate pass
+  // over 3N values would cost as much again).
+  if (m_dummy && with_rest) {
+    for (int i = 0; i < n; ++i) {
+      auto fi = particle(f, i);
+      fi += m_collision.force(i, particle(x, i));
+      if constexpr (per_mass) fi /= m;
+    }
+  } else if constexpr (per_mass) {
+    f /= m;
+  }
 }
 
 void ClothSystem::acceleration(double t, ConstVecRef x, ConstVecRef v,
                                VecRef a) const {
-  forces(x, v, a);
-  a /= particle_mass();
+  evaluate_forces<true>(x, v, a, ForceSplit::all);
   for (const int i : m_constraints.fixed_particles())
     particle(a, i) = m_constraints.trajectory(i)->acceleration(t);
 }
@@ -69,8 +96,7 @@ void ClothSystem::rhs(double t, ConstVecRef y, VecRef y_dot, ForceSplit split) c
   const Eigen::Index n3 = 3 * num_particles();
   const ConstVecMap x(y.data(), n3), v(y.data() + n3, n3);
   VecMap x_dot(y_dot.data(), n3), v_dot(y_dot.data() + n3, n3);
-  forces(x, v, v_dot, split);
-  v_dot /= particle_mass();
+  evaluate_forces<true>(x, v, v_dot, split);
   if (split == ForceSplit::non_springs) {
     x_dot.setZero();
     m_constraints.zero_fixed(v_dot);

@@ -99,6 +99,9 @@ class ClothSystem {
                              JacobianBlocks& blocks) const;
 
  private:
+  // forces(), or M^-1 forces() with per_mass (the division fused into the last pass).
+  template <bool per_mass>
+  void evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit split) const;
   template <class Visit>
   void for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite, ForceSplit split,
                                Visit&& visit) const;

@@ -50,14 +50,18 @@ inline Vec3 damping_force(const Vec3& d, const Vec3& w, double c) {
 }
 
 /// Elastic plus damping force on i, spring_force + damping_force in one pass: one square root
-/// and one division per spring, the cost that the force loop pays for every spring.
+/// and one division per spring, the cost that the force loop pays for every spring. With
+/// `damped` false the damping term (c = 0) is left out and w is not read; the elastic part is
+/// the same bits either way.
+template <bool damped = true>
 inline Vec3 spring_pair_force(const Vec3& d, const Vec3& w, double k, double rest, double c) {
   const double length2 = d.squaredNorm();
   if (length2 < degenerate_length * degenerate_length) return Vec3::Zero();
   const double length = std::sqrt(length2);
   const double inv_length = 1.0 / length;
   // Force = [k (L - L0) + c (w . d) / L] d / L.
-  const double magnitude = k * (length - rest) + c * w.dot(d) * inv_length;
+  double magnitude = k * (length - rest);
+  if constexpr (damped) magnitude += c * w.dot(d) * inv_length;
   return (magnitude * inv_length) * d;
 }
 

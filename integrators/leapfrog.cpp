@@ -17,8 +17,12 @@ double Leapfrog::step(double t_stop) {
     m_system.acceleration(m_t, x, v, a);
     ++m_counters.rhs_evals;
   }
-  v += 0.5 * h * a;  // v(n+1/2)
-  x += h * v;        // x(n+1)
+  // Kick to v(n+1/2) and drift to x(n+1) in one pass over the state.
+  const double half_h = 0.5 * h;
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    v[k] += half_h * a[k];
+    x[k] += h * v[k];
+  }
   m_t = t_next;
   m_system.project(m_t, x, v);
   m_system.acceleration(m_t, x, v, a);
