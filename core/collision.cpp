@@ -28,23 +28,12 @@ void ContactFinder::rebuild(int i, const Vec3& x) const {
             m_candidates.begin() + static_cast<std::ptrdiff_t>(i) * capacity);
 }
 
-NearestObjectParticle ContactFinder::nearest(int i, const Vec3& x) const {
+// A list that is missing, left behind, or too long for the cache.
+NearestObjectParticle ContactFinder::nearest_off_list(int i, const Vec3& x) const {
   if (m_count[i] == not_built || (x - m_anchor.segment<3>(3 * i)).squaredNorm() > m_skin * m_skin)
     rebuild(i, x);
   if (m_count[i] == overflowed) return m_dummy->nearest_within(x, m_threshold);
-
-  const double* positions = m_dummy->positions().data();
-  const int* list = m_candidates.data() + static_cast<std::ptrdiff_t>(i) * capacity;
-  int best = -1;
-  double best_d2 = m_threshold * m_threshold;
-  // The list is ascending, so a strict comparison keeps the lowest index among ties, as the
-  // grid does.
-  for (int c = 0; c < m_count[i]; ++c) {
-    const double d2 = detail::distance_squared(positions + 3 * list[c], x);
-    if (d2 < best_d2) best_d2 = d2, best = list[c];
-  }
-  if (best < 0) return {};
-  return {best, std::sqrt(best_d2)};
+  return nearest(i, x);
 }
 
 }  // namespace drape
@@ -59,16 +48,10 @@ Collision::Collision(std::shared_ptr<const Dummy> dummy, const CollisionParams& 
       m_outside_anchor(Eigen::VectorXd::Zero(m_dummy ? 3 * num_particles : 0)),
       m_outside_margin2(Eigen::VectorXd::Constant(m_dummy ? num_particles : 0, -1.0)) {}
 
-Vec3 Collision::force(int i, const Vec3& x) const {
-  if (!m_dummy) return Vec3::Zero();
+Vec3 Collision::surface_force(const Vec3& x) const {
   const double delta = m_params.threshold, k = m_params.stiffness;
-  if (m_params.model == CollisionModel::surface) {
-    const auto g = m_dummy->surface_gap(x);
-    return g && g->gap < delta ? Vec3(k * (delta - g->gap) * g->gradient) : Vec3::Zero();
-  }
-  const NearestObjectParticle hit = m_contacts.nearest(i, x);
-  if (hit.index < 0) return Vec3::Zero();
-  return collision_force(x - m_dummy->position(hit.index), m_dummy->normal(hit.index), k, delta);
+  const auto g = m_dummy->surface_gap(x);
+  return g && g->gap < delta ? Vec3(k * (delta - g->gap) * g->gradient) : Vec3::Zero();
 }
 
 double Collision::energy(int i, const Vec3& x) const {
@@ -95,15 +78,11 @@ Mat3 Collision::jacobian(int i, const Vec3& x, bool definite) const {
   return collision_jacobian(x - m_dummy->position(hit.index), k, delta, definite);
 }
 
-bool Collision::correct_penetration(int i, Vec3& x, Vec3& v) const {
-  if (!m_dummy) return false;
-  // Both models' inside is the radial gap below 0 between the end sections: nothing within the
-  // margin of the anchor is.
-  auto anchor = m_outside_anchor.segment<3>(3 * i);
-  if ((x - anchor).squaredNorm() < m_outside_margin2[i]) return false;
+// A particle that has left its outside margin: a new margin, or the exact test.
+bool Collision::correct_penetration_off_margin(int i, Vec3& x, Vec3& v) const {
   const double margin = m_dummy->outside_margin(x);
   if (margin > 0.0) {
-    anchor = x;
+    m_outside_anchor.segment<3>(3 * i) = x;
     m_outside_margin2[i] = margin * margin;
     return false;
   }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/dummy.hpp"
+#include "core/forces.hpp"
 
 namespace drape {
 
@@ -41,6 +42,7 @@ class ContactFinder {
   static constexpr int overflowed = -2;   // too many candidates: ask the grid directly
 
   void rebuild(int i, const Vec3& x) const;
+  NearestObjectParticle nearest_off_list(int i, const Vec3& x) const;
 
   std::shared_ptr<const Dummy> m_dummy;
   double m_threshold;
@@ -83,6 +85,9 @@ class Collision {
   bool correct_penetration(int i, Vec3& x, Vec3& v) const;
 
  private:
+  Vec3 surface_force(const Vec3& x) const;
+  bool correct_penetration_off_margin(int i, Vec3& x, Vec3& v) const;
+
   std::shared_ptr<const Dummy> m_dummy;
   CollisionParams m_params;
   ContactFinder m_contacts;
@@ -92,5 +97,41 @@ class Collision {
   mutable Eigen::VectorXd m_outside_anchor;   // 3N
   mutable Eigen::VectorXd m_outside_margin2;  // N, squared; -1 before the first test
 };
+
+// The force evaluation's hot path, inline: it runs for every cloth particle at every evaluation.
+
+inline NearestObjectParticle ContactFinder::nearest(int i, const Vec3& x) const {
+  if (m_count[i] < 0 || (x - m_anchor.segment<3>(3 * i)).squaredNorm() > m_skin * m_skin)
+    return nearest_off_list(i, x);
+  const double* positions = m_dummy->positions().data();
+  const int* list = m_candidates.data() + static_cast<std::ptrdiff_t>(i) * capacity;
+  int best = -1;
+  double best_d2 = m_threshold * m_threshold;
+  // The list is ascending, so a strict comparison keeps the lowest index among ties, as the
+  // grid does.
+  for (int c = 0; c < m_count[i]; ++c) {
+    const double d2 = detail::distance_squared(positions + 3 * list[c], x);
+    if (d2 < best_d2) best_d2 = d2, best = list[c];
+  }
+  if (best < 0) return {};
+  return {best, std::sqrt(best_d2)};
+}
+
+inline bool Collision::correct_penetration(int i, Vec3& x, Vec3& v) const {
+  if (!m_dummy) return false;
+  // Both models' inside is the radial gap below 0 between the end sections: nothing within the
+  // margin of the anchor is.
+  if ((x - m_outside_anchor.segment<3>(3 * i)).squaredNorm() < m_outside_margin2[i]) return false;
+  return correct_penetration_off_margin(i, x, v);
+}
+
+inline Vec3 Collision::force(int i, const Vec3& x) const {
+  if (!m_dummy) return Vec3::Zero();
+  if (m_params.model == CollisionModel::surface) return surface_force(x);
+  const NearestObjectParticle hit = m_contacts.nearest(i, x);
+  if (hit.index < 0) return Vec3::Zero();
+  return collision_force(x - m_dummy->position(hit.index), m_dummy->normal(hit.index),
+                         m_params.stiffness, m_params.threshold);
+}
 
 }  // namespace drape
