@@ -24,12 +24,29 @@ Eigen::VectorXd ClothSystem::initial_state(double t) const {
 
 namespace {
 
-// The spring loop, without the velocity loads of spring damping when it is off.
+// The spring loop, without the velocity loads of spring damping when it is off. Springs go in
+// pairs (one packed square root and division), their forces added in spring order.
 template <bool damped>
 void add_spring_forces(const SpringSet& springs, ConstVecRef x, ConstVecRef v, double c_spring,
                        VecRef f) {
-  for (Eigen::Index e = 0; e < springs.size(); ++e) {
-    const int i = springs.first[e], j = springs.second[e];
+  const auto& first = springs.first;
+  const auto& second = springs.second;
+  Eigen::Index e = 0;
+  for (; e + 1 < springs.size(); e += 2) {
+    const int i0 = first[e], j0 = second[e], i1 = first[e + 1], j1 = second[e + 1];
+    Vec3 force0, force1;
+    spring_pair_forces<damped>(
+        particle(x, j0) - particle(x, i0), particle(v, j0) - particle(v, i0),
+        springs.stiffness[e], springs.rest[e], particle(x, j1) - particle(x, i1),
+        particle(v, j1) - particle(v, i1), springs.stiffness[e + 1], springs.rest[e + 1],
+        c_spring, force0, force1);
+    particle(f, i0) += force0;
+    particle(f, j0) -= force0;
+    particle(f, i1) += force1;
+    particle(f, j1) -= force1;
+  }
+  if (e < springs.size()) {
+    const int i = first[e], j = second[e];
     const Vec3 force = spring_pair_force<damped>(particle(x, j) - particle(x, i),
                                                  particle(v, j) - particle(v, i),
                                                  springs.stiffness[e], springs.rest[e], c_spring);
