@@ -35,11 +35,13 @@ def energy_drift(energy):
 
 
 def moving_average(values, span):
-    """Centred moving average over `span` samples along axis 0 (shorter at the ends)."""
+    """Centred moving average over `span` samples along axis 0; near the ends the span shrinks
+    symmetrically, so the average stays centred and linear motion drops out everywhere."""
     half = max(span // 2, 0)
     cumulative = np.cumsum(np.concatenate([np.zeros((1,) + values.shape[1:]), values]), axis=0)
     k = np.arange(len(values))
-    lo, hi = np.maximum(k - half, 0), np.minimum(k + half + 1, len(values))
+    reach = np.minimum(half, np.minimum(k, len(values) - 1 - k))
+    lo, hi = k - reach, k + reach + 1
     shape = (-1,) + (1,) * (values.ndim - 1)
     return (cumulative[hi] - cumulative[lo]) / (hi - lo).reshape(shape)
 
@@ -102,6 +104,10 @@ def hand_jitter(hands, t0, t1):
 
 def read_hands(path):
     """hands.csv with the hand name turned into a number (left 0, right 1)."""
+    header = runfiles.read_header(path)
+    missing = [c for c in ("t", "hand", "available", "x", "y", "z") if c not in header]
+    if missing:
+        raise ValueError(f"{path}: missing column(s) {', '.join(missing)} (has {', '.join(header)})")
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     columns = {key: np.array([float(r[key]) for r in rows]) for key in ("t", "available", "x", "y", "z")}
@@ -177,20 +183,23 @@ def mapping_error(run, summary):
     maps = [e for e in summary.get("events", []) if e.get("type") == "map"]
     if not maps or not (run / "dummy.csv").exists() or not (run / "state.csv").exists():
         return {}
-    dummy = runfiles.read_table(run / "dummy.csv")
+    dummy = runfiles.read_table(run / "dummy.csv", ("x", "y", "z"))
     objects = np.stack([dummy["x"], dummy["y"], dummy["z"]], axis=1)
     delta = runfiles.scene_value(summary, "collision.threshold", 0.01)
     rows = runfiles.scene_value(summary, "cloth.rows", 0)
     cols = runfiles.scene_value(summary, "cloth.cols", 0)
     spacing = runfiles.scene_value(summary, "cloth.spacing", 0.0)
     states = {}
-    state = runfiles.read_table(run / "state.csv")
+    state = runfiles.read_table(run / "state.csv", ("x", "y", "z"))
     states["final"] = np.stack([state["x"], state["y"], state["z"]], axis=1)
     if (run / "trace.csv").exists():
         trace = runfiles.read_trace(run / "trace.csv")
         at_map = np.nonzero(trace["event"] & np.isclose(trace["t"], maps[0]["t"]))[0]
         if len(at_map):
             states["mapped"] = trace["x"][at_map[-1]]
+    if rows * cols != len(states["final"]):
+        raise ValueError(f"{run / 'summary.json'}: cloth.rows x cloth.cols = {rows} x {cols}, but "
+                         f"{run / 'state.csv'} has {len(states['final'])} particles")
     out = {}
     for stage, x in states.items():
         gap = nearest_distances(x, objects) - delta
@@ -206,7 +215,11 @@ def reference_error(run, reference_run):
     """RMS and max distance between the final particle positions of a run and its reference."""
     if not (run / "state.csv").exists() or not (reference_run / "state.csv").exists():
         return {}
-    a, b = runfiles.read_table(run / "state.csv"), runfiles.read_table(reference_run / "state.csv")
+    a = runfiles.read_table(run / "state.csv", ("x", "y", "z"))
+    b = runfiles.read_table(reference_run / "state.csv", ("x", "y", "z"))
+    if len(a["x"]) != len(b["x"]):
+        raise ValueError(f"{run / 'state.csv'}: {len(a['x'])} particles, the reference "
+                         f"{reference_run / 'state.csv'} has {len(b['x'])}")
     d = np.sqrt((a["x"] - b["x"]) ** 2 + (a["y"] - b["y"]) ** 2 + (a["z"] - b["z"]) ** 2)
     return {"error_rms": float(np.sqrt(np.mean(d**2))), "error_max": float(d.max())}
 
@@ -219,7 +232,7 @@ def run_metrics(directory, row, rows_by_id):
         return out, windows
     summary = runfiles.read_json(run / "summary.json")
     if (run / "energy.csv").exists():
-        out.update(energy_drift(runfiles.read_table(run / "energy.csv")))
+        out.update(energy_drift(runfiles.read_table(run / "energy.csv", ("t", "total"))))
     vib, windows = vibration(run, summary)
     out.update(vib)
     out.update(mapping_error(run, summary))

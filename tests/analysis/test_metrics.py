@@ -1,0 +1,403 @@
+"""The metrics of docs/analysis.md against closed forms, on small synthetic run folders."""
+import math
+import tempfile
+import unittest
+from pathlib import Path
+
+import numpy as np
+
+import runfolder
+from drapeanalysis import metrics, runfiles
+
+
+class RunFolderTest(unittest.TestCase):
+    """A fresh experiment folder per test, with run folders under runs/."""
+
+    def setUp(self):
+        self._tmp = tempfile.TemporaryDirectory()
+        self.directory = Path(self._tmp.name)
+
+    def tearDown(self):
+        self._tmp.cleanup()
+
+    def make_run(self, name="a"):
+        run = self.directory / "runs" / name
+        run.mkdir(parents=True)
+        return run
+
+    def row(self, name="a", **extra):
+        return {"id": name, "run_dir": f"runs/{name}", **extra}
+
+    def assertClose(self, actual, expected, rel=1e-9, abs_tol=0.0, msg=None):
+        self.assertTrue(math.isclose(actual, expected, rel_tol=rel, abs_tol=abs_tol),
+                        msg or f"{actual!r} != {expected!r} (rel {rel}, abs {abs_tol})")
+
+
+def drift(t, total):
+    return metrics.energy_drift({"t": np.asarray(t, float), "total": np.asarray(total, float)})
+
+
+class EnergyDriftTest(RunFolderTest):
+    T = 10.0
+    t = np.linspace(0.0, 10.0, 1001)
+
+    def test_linear_drift(self):
+        # E = E0 (1 + a t): r(t) = |a| t, relative to |E0| (E0 < 0 as with gravity below y = 0).
+        e0, a = -4.0, 0.02
+        out = drift(self.t, e0 * (1 + a * self.t))
+        self.assertClose(out["energy_drift_max_rel"], a * self.T)
+        self.assertClose(out["energy_drift_final_rel"], a * self.T)
+        self.assertClose(out["energy_drift_rate"], a)
+        self.assertClose(out["energy_drift_exponent"], 1.0)
+
+    def test_quadratic_growth(self):
+        # r = b t^2: envelope exponent 2; the least-squares slope of t^2 on an even grid over
+        # [0, T] is exactly T, so the rate is b T.
+        e0, b = 3.0, 1e-4
+        out = drift(self.t, e0 * (1 - b * self.t**2))
+        self.assertClose(out["energy_drift_max_rel"], b * self.T**2)
+        self.assertClose(out["energy_drift_rate"], b * self.T)
+        self.assertClose(out["energy_drift_exponent"], 2.0)
+
+    def test_bounded_oscillation(self):
+        # A symplectic method's error: oscillating, never growing. Exponent and rate near 0.
+        e0, eps, period = 2.5, 1e-5, 0.37
+        out = drift(self.t, e0 * (1 + eps * np.sin(2 * np.pi * self.t / period)))
+        self.assertClose(out["energy_drift_max_rel"], eps, rel=1e-3)
+        self.assertLess(abs(out["energy_drift_exponent"]), 1e-3)
+        self.assertLess(abs(out["energy_drift_rate"]) * self.T, 0.02 * eps)
+
+    def test_max_and_final_differ(self):
+        # Energy that goes away and comes back: max c at T/2, final error 0.
+        e0, c = 1.0, 0.05
+        out = drift(self.t, e0 * (1 + c * np.sin(np.pi * self.t / self.T)))
+        self.assertClose(out["energy_drift_max_rel"], c)
+        self.assertLess(out["energy_drift_final_rel"], 1e-14)
+
+    def test_exact_conservation_and_short_series(self):
+        out = drift(self.t, np.full_like(self.t, 7.0))
+        self.assertEqual(out["energy_drift_max_rel"], 0.0)
+        self.assertEqual(out["energy_drift_rate"], 0.0)
+        self.assertTrue(math.isnan(out["energy_drift_exponent"]), "log of a zero envelope")
+        out = drift([0.0, 0.1], [1.0, 1.1])
+        self.assertClose(out["energy_drift_max_rel"], 0.1)
+        self.assertTrue(math.isnan(out["energy_drift_rate"]))
+        self.assertTrue(math.isnan(out["energy_drift_exponent"]))
+
+    def test_from_energy_csv(self):
+        run = self.make_run()
+        runfolder.write_summary(run)
+        e0, a = -4.0, 0.02
+        runfolder.write_energy(run, self.t, e0 * (1 + a * self.t))
+        out, windows = metrics.run_metrics(self.directory, self.row(), {})
+        self.assertClose(out["energy_drift_max_rel"], a * self.T)
+        self.assertClose(out["energy_drift_rate"], a)
+        self.assertClose(out["energy_drift_exponent"], 1.0)
+        self.assertEqual(windows, [])
+        self.assertNotIn("vibration_rms_final", out, "no trace.csv, no vibration")
+
+
+def unit_directions(n):
+    d = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 1], [1, -2, 0.5]], float)[:n]
+    return d / np.linalg.norm(d, axis=1, keepdims=True)
+
+
+def trace_dict(t, x, v=None, fixed=None, contact=None):
+    """What runfiles.read_trace returns, built in memory."""
+    k, n = x.shape[:2]
+    return {
+        "t": np.asarray(t, float), "x": x, "v": np.zeros_like(x) if v is None else v,
+        "fixed": np.zeros((k, n), bool) if fixed is None else fixed,
+        "contact": -np.ones((k, n), int) if contact is None else contact,
+        "event": np.zeros(k, bool),
+    }
+
+
+class VibrationWindowTest(RunFolderTest):
+    # A centred average over w leaves up to about 1 / (pi f w) of a sinusoid of frequency f
+    # (2.5 % at 250 Hz, 3.2 % at 200 Hz): the tolerance of the high-frequency RMS below.
+    # Trace every 1 ms from 0.8 s to 1.7 s; the window is [1.0, 1.5].
+    t = np.arange(800, 1701) / 1000.0
+    t0, t1 = 1.0, 1.5
+
+    def slow_motion(self, n):
+        """Draping-like motion: a drift plus a 3 s swing, and its velocity."""
+        t = self.t[:, None, None]
+        start = np.arange(n)[None, :, None] * np.array([0.1, 0.0, 0.05])
+        u = np.array([0.2, -0.3, 0.1])
+        swing = np.array([0.0, 0.02, 0.0])
+        w = 2 * np.pi / 3.0
+        return start + u * t + swing * np.sin(w * t), u + swing * w * np.cos(w * t) + 0 * start
+
+    def test_sinusoid_on_slow_motion(self):
+        # x_i = slow_i(t) + A sin(2 pi f t + phi_i) d_i: the high-frequency residual is the
+        # sinusoid, RMS A / sqrt 2; velocity RMS 2 pi f A / sqrt 2.
+        n, amplitude, f = 4, 1e-3, 200.0
+        x, v = self.slow_motion(n + 1)
+        phase = 2 * np.pi * f * self.t[:, None] + 0.7 * np.arange(n + 1)
+        d = unit_directions(n + 1)
+        inside = ((self.t >= self.t0) & (self.t <= self.t1))[:, None, None]
+        scale = np.where(inside, amplitude, 10 * amplitude)  # outside the window: ignored
+        x = x + scale * np.sin(phase)[:, :, None] * d
+        v = v + scale * 2 * np.pi * f * np.cos(phase)[:, :, None] * d
+        # The last particle is fixed for one frame in the window and shakes hard: not free.
+        fixed = np.zeros(x.shape[:2], bool)
+        fixed[300, n] = True
+        x[:, n] += 0.05 * np.sin(2 * np.pi * 90 * self.t)[:, None]
+        out = metrics.vibration_window(trace_dict(self.t, x, v, fixed), self.t0, self.t1)
+        self.assertEqual(out["frames"], 501)
+        self.assertClose(out["vibration_rms"], amplitude / math.sqrt(2), rel=0.03)
+        self.assertClose(out["vibration_velocity_rms"], 2 * np.pi * f * amplitude / math.sqrt(2), rel=0.03)
+        self.assertTrue(math.isnan(out["hand_jitter_rms"]), "no hands.csv")
+
+    def test_uniform_motion_drops_out(self):
+        # Motion linear in time (positions drifting, velocities growing as in free fall) has no
+        # high-frequency part: the centred average reproduces it, at the window's ends too.
+        n = 3
+        t = self.t[:, None, None]
+        x = np.arange(n)[None, :, None] * 0.1 + np.array([0.3, -0.5, 0.2]) * t
+        v = np.array([0.3, -0.5, 0.2]) + np.array([0.0, -9.81, 0.0]) * t + 0 * x
+        out = metrics.vibration_window(trace_dict(self.t, x, v), self.t0, self.t1)
+        self.assertLess(out["vibration_rms"], 1e-12)
+        self.assertLess(out["vibration_velocity_rms"], 1e-10)
+
+    def speeds_trace(self, speed):
+        """A trace whose particles all move at `speed(t)` (the RMS speed), in different directions."""
+        n = 3
+        v = speed(self.t)[:, None, None] * unit_directions(n)[None]
+        return trace_dict(self.t, np.zeros_like(v), v)
+
+    def test_settle_time_of_exponential_decay(self):
+        # s(t) = s0 exp(-(t - t0) / tau) falls below 0.01 m/s at tau ln(s0 / 0.01); the settle
+        # time is that of the first frame at or after it (frames every 1 ms).
+        s0, tau = 0.5, 0.05
+        trace = self.speeds_trace(lambda t: np.where(t < self.t0, 2.0, s0 * np.exp(-(t - self.t0) / tau)))
+        expected = tau * math.log(s0 / metrics.SETTLE_SPEED)
+        settle = metrics.vibration_window(trace, self.t0, self.t1)["settle_time"]
+        self.assertGreaterEqual(settle, expected - 1e-12)
+        self.assertLessEqual(settle, expected + 1e-3 + 1e-12)
+
+    def test_settle_time_waits_for_the_last_excursion(self):
+        # Below the limit from 1.2 s, back above over [1.35, 1.36]: settled from the next frame.
+        trace = self.speeds_trace(lambda t: np.where((t < 1.2) | ((t >= 1.35) & (t <= 1.36)), 0.02, 0.001))
+        self.assertClose(metrics.vibration_window(trace, self.t0, self.t1)["settle_time"], 0.361)
+        never = metrics.vibration_window(self.speeds_trace(lambda t: 0.02 + 0 * t), self.t0, self.t1)
+        self.assertTrue(math.isnan(never["settle_time"]))
+        at_rest = metrics.vibration_window(self.speeds_trace(lambda t: 0.001 + 0 * t), self.t0, self.t1)
+        self.assertEqual(at_rest["settle_time"], 0.0)
+
+    def test_contact_switch_rate(self):
+        # Frames every 0.1 s over 1 s: particle 0 switches 3 times, particle 1 never; particle 2
+        # is fixed in one frame and switches every frame (not counted). 3 / (2 particles x 1 s).
+        t = np.arange(11) / 10.0
+        contact = np.empty((11, 3), int)
+        contact[:, 0] = [-1, -1, 5, 5, 6, 6, 6, -1, -1, -1, -1]
+        contact[:, 1] = 7
+        contact[:, 2] = np.arange(11)
+        fixed = np.zeros((11, 3), bool)
+        fixed[4, 2] = True
+        trace = trace_dict(t, np.zeros((11, 3, 3)), fixed=fixed, contact=contact)
+        self.assertClose(metrics.vibration_window(trace, 0.0, 1.0)["contact_switch_rate"], 1.5)
+
+    def test_too_few_frames_or_no_free_particle(self):
+        trace = trace_dict(self.t, np.zeros((len(self.t), 2, 3)))
+        self.assertNotIn("vibration_rms", metrics.vibration_window(trace, 1.0, 1.001))
+        trace["fixed"][:] = True
+        self.assertNotIn("vibration_rms", metrics.vibration_window(trace, self.t0, self.t1))
+
+
+class RunVibrationTest(RunFolderTest):
+    """vibration() over a run: event windows, final window, steady holding, hands, settling."""
+
+    def test_windows_of_a_run_with_events(self):
+        run = self.make_run()
+        events = [{"t": 0.2, "type": "hold", "hand": "left"},
+                  {"t": 1.0, "type": "ignored", "reason": "no candidate"},
+                  {"t": 2.0, "type": "release", "hand": "left"}]
+        runfolder.write_summary(run, events)
+        # Frames every 1 ms to 3 s, and an event frame right after the hold and the release.
+        step = np.arange(3001) / 1000.0
+        t = np.sort(np.concatenate([step, [0.2, 2.0]]), kind="stable")
+        event = np.zeros(len(t), int)
+        event[np.searchsorted(t, [0.2, 2.0], side="right") - 1] = 1
+        # Vibration amplitude per phase: after the hold 1e-3, steady holding (from 0.7 s) 2e-3,
+        # after the release 0.6e-3, over the last 0.5 s 0.3e-3.
+        amplitude = np.select([t < 0.7, t < 2.0, t < 2.5], [1e-3, 2e-3, 0.6e-3], 0.3e-3)
+        n, f = 2, 250.0
+        d = unit_directions(n)
+        phase = 2 * np.pi * f * t[:, None] + np.arange(n)
+        x = 0.05 * t[:, None, None] + (amplitude[:, None] * np.sin(phase))[:, :, None] * d
+        # Speeds: falling at 0.3 m/s, then decaying after each event (tau 0.02 s, then 0.05 s).
+        speed = np.select([t < 0.2, t < 2.0], [0.3, 0.5 * np.exp(-(t - 0.2) / 0.02)],
+                          0.5 * np.exp(-(t - 2.0) / 0.05))
+        v = speed[:, None, None] * d[None]
+        runfolder.write_trace(run, t, x, v, event=event)
+        # The left hand jitters (amplitude J at 250 Hz on a slow drift); the right one is not
+        # tracked and its (meaningless) position must not count.
+        jitter = 4e-4
+        hands = []
+        for ti in step:
+            hands.append((ti, "left", 1, 0.1 + 0.02 * ti + jitter * math.sin(2 * math.pi * 250 * ti), 1.2, 0.3))
+            hands.append((ti, "right", 0, 50 * math.sin(2 * math.pi * 90 * ti), 0.0, 0.0))
+        runfolder.write_hands(run, hands)
+
+        out, windows = metrics.vibration(run, runfiles.read_json(run / "summary.json"))
+        self.assertEqual([(w["window_start"], w["window_end"]) for w in windows], [(0.2, 0.7), (2.0, 2.5)])
+        root2 = math.sqrt(2)
+        self.assertClose(windows[0]["vibration_rms"], 1e-3 / root2, rel=0.03)
+        self.assertClose(windows[1]["vibration_rms"], 0.6e-3 / root2, rel=0.03)
+        self.assertClose(out["vibration_rms_events"], 1e-3 / root2, rel=0.03)
+        self.assertClose(out["vibration_rms_final"], 0.3e-3 / root2, rel=0.03)
+        self.assertClose(out["vibration_rms_holding"], 2e-3 / root2, rel=0.03)
+        self.assertClose(out["hand_jitter_rms_holding"], jitter / root2, rel=0.03)
+        self.assertClose(out["hand_jitter_rms_final"], jitter / root2, rel=0.03)
+        self.assertEqual(out["contact_switch_rate_final"], 0.0)
+        # The slowest event settles: the release, 0.05 ln(0.5 / 0.01) s.
+        self.assertGreaterEqual(out["settle_time"], 0.05 * math.log(50) - 1e-12)
+        self.assertLessEqual(out["settle_time"], 0.05 * math.log(50) + 1e-3)
+
+        # run_metrics reports the same, and the windows for metrics.json.
+        all_out, all_windows = metrics.run_metrics(self.directory, self.row(), {})
+        self.assertEqual(all_out["vibration_rms_holding"], out["vibration_rms_holding"])
+        self.assertEqual(len(all_windows), 2)
+
+    def test_run_without_events_settles_from_the_start(self):
+        run = self.make_run()
+        runfolder.write_summary(run, [{"t": 0.5, "type": "ignored"}])
+        t = np.arange(1001) / 1000.0
+        d = unit_directions(2)
+        v = (0.2 * np.exp(-t / 0.1))[:, None, None] * d[None]
+        runfolder.write_trace(run, t, np.zeros_like(v), v)
+        out, windows = metrics.vibration(run, runfiles.read_json(run / "summary.json"))
+        self.assertEqual(windows, [])
+        self.assertGreaterEqual(out["settle_time"], 0.1 * math.log(20) - 1e-12)
+        self.assertLessEqual(out["settle_time"], 0.1 * math.log(20) + 1e-3)
+        self.assertTrue(math.isnan(out["vibration_rms_events"]))
+        self.assertTrue(math.isnan(out["vibration_rms_holding"]), "no hold")
+        self.assertTrue(math.isnan(out["hand_jitter_rms_final"]), "no hands.csv: no value")
+        self.assertEqual(out["vibration_rms_final"], 0.0)
+
+    def test_hands_never_tracked(self):
+        hands = {"t": np.arange(100) / 1000.0, "available": np.zeros(100), "x": np.ones(100),
+                 "y": np.ones(100), "z": np.ones(100), "hand_id": np.zeros(100, int)}
+        self.assertEqual(metrics.hand_jitter(hands, 0.0, 1.0), 0.0)
+
+    def test_no_trace(self):
+        run = self.make_run()
+        runfolder.write_summary(run)
+        self.assertEqual(metrics.vibration(run, {}), ({}, []))
+
+
+class MappingErrorTest(RunFolderTest):
+    rows, cols, spacing, delta = 3, 4, 0.1, 0.01
+
+    def scene(self):
+        return {"cloth": {"rows": self.rows, "cols": self.cols, "spacing": self.spacing},
+                "collision": {"threshold": self.delta}}
+
+    def grid(self, scale, height):
+        """The cloth grid, spacing scaled by `scale`, flat at `height`; particle index r * cols + c."""
+        r, c = np.divmod(np.arange(self.rows * self.cols), self.cols)
+        s = self.spacing * scale
+        return np.stack([c * s, np.full(len(r), height), r * s], axis=1)
+
+    def write_dummy(self, run, points):
+        runfolder.write_csv(run / "dummy.csv", "index,section,point,x,y,z,nx,ny,nz",
+                            [(i, 0, i, *p, 0.0, 1.0, 0.0) for i, p in enumerate(points)])
+
+    def test_uniform_stretch_and_gap(self):
+        # Final: spacing stretched 3 %, 2 mm above the threshold. Mapped (trace frame of the map
+        # event): squeezed 2 %, 1 mm inside it. Object particles on y = 0 right under both grids
+        # (and far away ones), so each particle's nearest distance is its height.
+        run = self.make_run()
+        runfolder.write_summary(run, [{"t": 0.1, "type": "hold"}, {"t": 0.3, "type": "map"}], self.scene())
+        final = self.grid(1.03, self.delta + 0.002)
+        mapped = self.grid(0.98, self.delta - 0.001)
+        objects = np.concatenate([final, mapped, [[5.0, 5.0, 5.0], [-3.0, 0.0, 1.0]]])
+        objects[:len(final) + len(mapped), 1] = 0.0
+        self.write_dummy(run, objects)
+        runfolder.write_state(run, final, cols=self.cols)
+        # Trace: start, the hold's event frame (another shape), the map's step and event frames,
+        # a later frame.
+        frames = [self.grid(1.0, 1.0), self.grid(1.1, 0.5), self.grid(1.2, 0.4), mapped, self.grid(1.05, 0.2)]
+        runfolder.write_trace(run, [0.0, 0.1, 0.3, 0.3, 0.4], np.stack(frames), event=np.array([0, 1, 0, 1, 0]))
+        out = metrics.mapping_error(run, runfiles.read_json(run / "summary.json"))
+        self.assertClose(out["mapping_gap_mean_final"], 0.002, rel=1e-9)
+        self.assertClose(out["mapping_gap_max_final"], 0.002, rel=1e-9)
+        self.assertClose(out["mapping_gap_mean_mapped"], 0.001, rel=1e-9)
+        self.assertClose(out["mapping_gap_max_mapped"], 0.001, rel=1e-9)
+        self.assertClose(out["spring_strain_rms_final"], 0.03, rel=1e-9)
+        self.assertClose(out["spring_strain_max_final"], 0.03, rel=1e-9)
+        self.assertClose(out["spring_strain_rms_mapped"], 0.02, rel=1e-9)
+        self.assertClose(out["spring_strain_max_mapped"], 0.02, rel=1e-9)
+
+    def test_uneven_gap_and_strain(self):
+        # Heights delta + g_i; the expected strain counted spring by spring here.
+        run = self.make_run()
+        runfolder.write_summary(run, [{"t": 0.3, "type": "map"}], self.scene())
+        x = self.grid(1.0, 0.0)
+        x[:, 0] *= 1.01  # 1 % along the rows
+        gaps = 0.001 * np.array([1, -2, 0.5, 3, -1, 0, 2, -0.5, 1.5, -3.5, 0.25, 1])
+        x[:, 1] = self.delta + gaps
+        objects = x.copy()
+        objects[:, 1] = 0.0
+        self.write_dummy(run, objects)
+        runfolder.write_state(run, x, cols=self.cols)
+        strains = []
+        for r in range(self.rows):
+            for c in range(self.cols):
+                for dr, dc in ((0, 1), (1, 0), (1, 1), (1, -1)):
+                    if 0 <= r + dr < self.rows and 0 <= c + dc < self.cols:
+                        a, b = x[r * self.cols + c], x[(r + dr) * self.cols + c + dc]
+                        rest = self.spacing * math.hypot(dr, dc)
+                        strains.append((np.linalg.norm(b - a) - rest) / rest)
+        self.assertEqual(len(strains), 3 * 3 + 2 * 4 + 2 * 2 * 3)
+        strains = np.array(strains)
+        out = metrics.mapping_error(run, runfiles.read_json(run / "summary.json"))
+        self.assertClose(out["mapping_gap_mean_final"], np.mean(np.abs(gaps)))
+        self.assertClose(out["mapping_gap_max_final"], 0.0035)
+        self.assertClose(out["spring_strain_rms_final"], math.sqrt(np.mean(strains**2)))
+        self.assertClose(out["spring_strain_max_final"], np.max(np.abs(strains)))
+        self.assertNotIn("mapping_gap_mean_mapped", out, "no trace.csv")
+
+    def test_no_map_event(self):
+        run = self.make_run()
+        runfolder.write_summary(run, [{"t": 0.3, "type": "hold"}], self.scene())
+        self.assertEqual(metrics.mapping_error(run, runfiles.read_json(run / "summary.json")), {})
+
+
+class ReferenceErrorTest(RunFolderTest):
+    def test_known_displacements(self):
+        # Particle i moved by i mm along x plus a common (3, 4, 0) mm.
+        n = 10
+        base = np.random.default_rng(1).uniform(-1, 1, (n, 3))
+        shift = np.array([0.003, 0.004, 0.0]) + np.outer(np.arange(n), [0.001, 0.0, 0.0])
+        runfolder.write_state(self.make_run("ref"), base)
+        runfolder.write_state(self.make_run("b"), base + shift)
+        for name in ("ref", "b"):
+            runfolder.write_summary(self.directory / "runs" / name)
+        rows = {"ref": self.row("ref"), "b": self.row("b", reference="ref")}
+        out, _ = metrics.run_metrics(self.directory, rows["b"], rows)
+        distances = np.hypot(0.003 + 0.001 * np.arange(n), 0.004)
+        self.assertClose(out["error_rms"], math.sqrt(np.mean(distances**2)))
+        self.assertClose(out["error_max"], math.hypot(0.012, 0.004))
+        ref_out, _ = metrics.run_metrics(self.directory, rows["ref"], rows)
+        self.assertNotIn("error_rms", ref_out)
+
+    def test_uniform_shift(self):
+        base = np.zeros((4, 3))
+        a, b = self.make_run("a"), self.make_run("b")
+        runfolder.write_state(a, base)
+        runfolder.write_state(b, base + [0.0, 0.003, 0.004])
+        out = metrics.reference_error(b, a)
+        self.assertClose(out["error_rms"], 0.005)
+        self.assertClose(out["error_max"], 0.005)
+
+    def test_diverged_run_has_no_error(self):
+        a, b = self.make_run("a"), self.make_run("b")
+        runfolder.write_state(a, np.zeros((4, 3)))
+        self.assertEqual(metrics.reference_error(b, a), {}, "no state.csv after divergence")
+
+
+if __name__ == "__main__":
+    unittest.main()
