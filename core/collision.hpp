@@ -130,8 +130,8 @@ inline Vec3 Collision::force(int i, const Vec3& x) const {
   if (m_params.model == CollisionModel::surface) return surface_force(x);
   const NearestObjectParticle hit = m_contacts.nearest(i, x);
   if (hit.index < 0) return Vec3::Zero();
-  return collision_force(x - m_dummy->position(hit.index), m_dummy->normal(hit.index),
-                         m_params.stiffness, m_params.threshold);
+  return collision_force(x - m_dummy->position(hit.index), hit.distance,
+                         m_dummy->normal(hit.index), m_params.stiffness, m_params.threshold);
 }
 
 }  // namespace drape

@@ -117,12 +117,18 @@ inline double collision_energy(const Vec3& d, double k, double delta) {
   return gap > 0.0 ? 0.5 * k * gap * gap : 0.0;
 }
 
-/// Repulsive force on the cloth particle; along `normal` when |d| is nearly 0.
-inline Vec3 collision_force(const Vec3& d, const Vec3& normal, double k, double delta) {
-  const double length = d.norm();
+/// Repulsive force on the cloth particle, with length = |d| already known (the contact query
+/// measures it); along `normal` when |d| is nearly 0.
+inline Vec3 collision_force(const Vec3& d, double length, const Vec3& normal, double k,
+                            double delta) {
   if (length >= delta) return Vec3::Zero();
   if (length < degenerate_length) return k * delta * normal;
   return (k * (delta - length) / length) * d;
+}
+
+/// Repulsive force on the cloth particle; along `normal` when |d| is nearly 0.
+inline Vec3 collision_force(const Vec3& d, const Vec3& normal, double k, double delta) {
+  return collision_force(d, d.norm(), normal, k, delta);
 }
 
 /// dF/dx of the collision force (the elastic spring Jacobian with L0 = delta, sign flipped

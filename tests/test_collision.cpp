@@ -43,6 +43,30 @@ TEST(ContactFinder, EqualsTheGridQueryAlongRandomWalks) {
   EXPECT_GT(hits, 10000) << "most queries are in contact";
 }
 
+TEST(ParticleCollision, ForceUsesTheQueryDistanceWithTheSameBits) {
+  const auto dummy = std::make_shared<const Dummy>(
+      make_dummy(nlohmann::json{{"builtin", "dress-form"}}, "test", "dummy", "."));
+  const CollisionParams params{0.01, 1000.0, CollisionModel::particle};
+  const Collision collision(dummy, params, 1);
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int hits = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double y = 1.05 + 0.2 * u(rng), theta = 1.5 * u(rng);
+    const Eigen::Vector2d axis = dummy->axis_at(y);
+    const double r = dummy->surface_radius(y, theta) + 0.01 * u(rng);
+    const Vec3 x(axis.x() + r * std::sin(theta), y, axis.y() + r * std::cos(theta));
+    const NearestObjectParticle hit = dummy->nearest_within(x, params.threshold);
+    if (hit.index < 0) continue;
+    // The query's distance is the norm that collision_force would take itself.
+    ASSERT_EQ(collision.force(0, x), collision_force(x - dummy->position(hit.index),
+                                                     dummy->normal(hit.index), params.stiffness,
+                                                     params.threshold));
+    ++hits;
+  }
+  EXPECT_GT(hits, 1000);
+}
+
 TEST(DummyParticlesWithin, MatchesTheBruteForceScan) {
   const Dummy dummy(cylinder_sections(0.1, 0.0, 0.0, 1.0, 0.5, 21, 24));
   std::mt19937 rng(5);
