@@ -35,12 +35,8 @@ double ImplicitEuler::step(double t_stop) {
   m_counters.linear_iters += m_solver.iterations() - cg_before;
   ++m_counters.newton_iters;
   m_y += m_increment;  // x += h (v + dv), v += dv
-  m_t = t_next;
-  m_system.project(m_t, x, v);
-  m_last_step = h;
-  ++m_counters.steps;
-  ++m_counters.attempts;
-  return m_t;
+  m_system.project(t_next, x, v);
+  return accept_fixed_step(t_next);
 }
 
 }  // namespace drape

@@ -24,6 +24,14 @@ void Integrator::reset(double t, const Eigen::VectorXd& y) {
   m_started = true;
 }
 
+double Integrator::accept_fixed_step(double t_next) {
+  m_last_step = t_next - m_t;
+  m_t = t_next;
+  ++m_counters.steps;
+  ++m_counters.attempts;
+  return m_t;
+}
+
 double fixed_step_end(double dt, double t, double t_stop) {
   // A remainder within round-off of dt is taken as one full step, so that dt = 1/30 over 1 s
   // takes 30 steps, not 30 plus a sliver.

@@ -57,6 +57,9 @@ class Integrator {
   double last_step() const { return m_last_step; }
 
  protected:
+  /// Books an accepted fixed step that ended at t_next (time, step size, counters); returns it.
+  double accept_fixed_step(double t_next);
+
   /// Views of the position and velocity blocks of m_y.
   VecMap positions() { return VecMap(m_y.data(), m_y.size() / 2); }
   VecMap velocities() { return VecMap(m_y.data() + m_y.size() / 2, m_y.size() / 2); }

@@ -23,17 +23,13 @@ double Leapfrog::step(double t_stop) {
     v[k] += half_h * a[k];
     x[k] += h * v[k];
   }
-  m_t = t_next;
-  m_system.project(m_t, x, v);
-  m_system.acceleration(m_t, x, v, a);
+  m_system.project(t_next, x, v);
+  m_system.acceleration(t_next, x, v, a);
   ++m_counters.rhs_evals;
-  v += 0.5 * h * a;  // v(n+1), synchronised; the next kick continues from here
-  m_system.constraints().project(m_t, x, v);
+  v += half_h * a;  // v(n+1), synchronised; the next kick continues from here
+  m_system.constraints().project(t_next, x, v);
   m_have_acceleration = true;
-  m_last_step = h;
-  ++m_counters.steps;
-  ++m_counters.attempts;
-  return m_t;
+  return accept_fixed_step(t_next);
 }
 
 }  // namespace drape

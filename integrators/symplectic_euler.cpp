@@ -16,12 +16,8 @@ double SymplecticEuler::step(double t_stop) {
   ++m_counters.rhs_evals;
   v += h * a;
   x += h * v;
-  m_t = t_next;
-  m_system.project(m_t, x, v);
-  m_last_step = h;
-  ++m_counters.steps;
-  ++m_counters.attempts;
-  return m_t;
+  m_system.project(t_next, x, v);
+  return accept_fixed_step(t_next);
 }
 
 }  // namespace drape

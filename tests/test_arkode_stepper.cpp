@@ -70,7 +70,7 @@ INSTANTIATE_TEST_SUITE_P(
         OrderCase{"arkode-dirk", "ARKODE_ESDIRK436L2SA_6_3_4", 4, 2e-3, false},
         OrderCase{"arkode-imex", "ARKODE_ARK324L2SA_4_2_3", 3, 1e-3, true},
         OrderCase{"arkode-imex", "ARKODE_ARK436L2SA_6_3_4", 4, 2e-3, true}),
-    [](const auto& info) { return std::string(info.param.table).substr(7); });
+    [](const auto& test) { return std::string(test.param.table).substr(7); });
 
 // Every ARKODE integrator settles the damped pinned cloth on Newton's equilibrium; the implicit
 // ones with a step several times leap-frog's measured stability limit.
