@@ -113,29 +113,14 @@ TEST(ArkodeStepper, ImplicitStepFarBeyondTheExplicitLimitStaysBounded) {
 TEST(ArkodeStepper, FixedAndMovingParticlesFollowTheirPaths) {
   for (const char* name : {"arkode-erk", "arkode-dirk", "arkode-imex"}) {
     for (const bool adaptive : {false, true}) {
-      auto s = testing::pinned_test_cloth(0.01, 0.001);
-      const Eigen::VectorXd y0 = testing::shaken_state(*s);
-      const auto circle = std::make_shared<testing::CircleTrajectory>(
-          s->cloth().rest_positions.segment<3>(9) + Vec3(0.0, 0.0, -0.01), 0.01, 20.0);
-      s->constraints().fix(3, circle);
-      Eigen::VectorXd y = y0;
-      s->constraints().project(0.0, VecMap(y.data(), 48), VecMap(y.data() + 48, 48));
+      SCOPED_TRACE(std::string(name) + (adaptive ? " adaptive" : " fixed"));
+      const testing::CirclingCorner c = testing::circling_corner();
       IntegratorOptions o = arkode_options(name, "", 1e-3);
       o.adaptive = adaptive;
       o.rtol = 1e-6;
       o.atol = 1e-9;
-      auto method = make_integrator(o, *s);
-      method->reset(0.0, y);
-      while (method->time() < 0.3 - 1e-12) {
-        const double t = method->step(0.3);
-        const Eigen::VectorXd& state = method->state();
-        ASSERT_EQ(state.segment<3>(0), y0.segment<3>(0)) << name;
-        ASSERT_TRUE(state.segment<3>(48).isZero()) << name;
-        ASSERT_EQ(state.segment<3>(9), circle->position(t)) << name;
-        ASSERT_EQ(state.segment<3>(48 + 9), circle->velocity(t)) << name;
-      }
-      // The pulled corner drags its neighbour along.
-      EXPECT_GT((method->state().segment<3>(6) - y.segment<3>(6)).norm(), 1e-3) << name;
+      auto method = make_integrator(o, *c.system);
+      testing::expect_fixed_particles_follow(*method, c, 0.3);
     }
   }
 }

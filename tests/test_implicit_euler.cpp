@@ -70,23 +70,9 @@ TEST(ImplicitEuler, StepFarBeyondTheExplicitLimitStaysBounded) {
 }
 
 TEST(ImplicitEuler, FixedAndMovingParticlesFollowTheirPaths) {
-  auto s = testing::pinned_test_cloth(0.01, 0.001);
-  const Eigen::VectorXd y0 = testing::shaken_state(*s);
-  const auto circle = std::make_shared<testing::CircleTrajectory>(
-      s->cloth().rest_positions.segment<3>(9) + Vec3(0.0, 0.0, -0.01), 0.01, 20.0);
-  s->constraints().fix(3, circle);
-  Eigen::VectorXd y = y0;
-  s->constraints().project(0.0, VecMap(y.data(), 48), VecMap(y.data() + 48, 48));
-  ImplicitEuler method(*s, euler_options(1e-2));
-  method.reset(0.0, y);
-  while (method.time() < 0.3 - 1e-12) {
-    const double t = method.step(0.3);
-    ASSERT_EQ(method.state().segment<3>(0), y0.segment<3>(0));
-    ASSERT_TRUE(method.state().segment<3>(48).isZero());
-    ASSERT_EQ(method.state().segment<3>(9), circle->position(t));
-    ASSERT_EQ(method.state().segment<3>(48 + 9), circle->velocity(t));
-  }
-  EXPECT_GT((method.state().segment<3>(6) - y.segment<3>(6)).norm(), 1e-3);
+  const testing::CirclingCorner corner = testing::circling_corner();
+  ImplicitEuler method(*corner.system, euler_options(1e-2));
+  testing::expect_fixed_particles_follow(method, corner, 0.3);
   const IntegratorCounters& c = method.counters();
   EXPECT_EQ(c.steps, 30);
   EXPECT_EQ(c.rhs_evals, 30);

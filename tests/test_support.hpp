@@ -1,6 +1,7 @@
 #pragma once
 // Small systems and finite-difference helpers shared by the tests.
 #include <Eigen/Core>
+#include <gtest/gtest.h>
 #include <Eigen/SparseLU>
 #include <functional>
 #include <random>
@@ -206,5 +207,39 @@ class CircleTrajectory final : public Trajectory {
   Vec3 m_centre;
   double m_radius, m_omega;
 };
+
+/// pinned_test_cloth (damped) whose corner 3 moves on a circle, and a shaken start state
+/// projected onto the constraints: the fixture of the "fixed and moving particles" tests.
+struct CirclingCorner {
+  std::unique_ptr<ClothSystem> system;
+  std::shared_ptr<CircleTrajectory> circle;
+  Eigen::VectorXd start;
+};
+
+inline CirclingCorner circling_corner() {
+  CirclingCorner c{pinned_test_cloth(0.01, 0.001), nullptr, {}};
+  c.circle = std::make_shared<CircleTrajectory>(
+      c.system->cloth().rest_positions.segment<3>(9) + Vec3(0.0, 0.0, -0.01), 0.01, 20.0);
+  c.system->constraints().fix(3, c.circle);
+  c.start = shaken_state(*c.system);
+  c.system->constraints().project(0.0, VecMap(c.start.data(), 48), VecMap(c.start.data() + 48, 48));
+  return c;
+}
+
+/// Steps `method` from c.start to t_end; after every step pin 0 is exactly where it started, at
+/// rest, and corner 3 exactly on its circle. At the end the corner has dragged its neighbour.
+inline void expect_fixed_particles_follow(Integrator& method, const CirclingCorner& c,
+                                          double t_end) {
+  method.reset(0.0, c.start);
+  while (method.time() < t_end - 1e-12) {
+    const double t = method.step(t_end);
+    const Eigen::VectorXd& state = method.state();
+    ASSERT_EQ(state.segment<3>(0), c.start.segment<3>(0));
+    ASSERT_TRUE(state.segment<3>(48).isZero());
+    ASSERT_EQ(state.segment<3>(9), c.circle->position(t));
+    ASSERT_EQ(state.segment<3>(48 + 9), c.circle->velocity(t));
+  }
+  EXPECT_GT((method.state().segment<3>(6) - c.start.segment<3>(6)).norm(), 1e-3);
+}
 
 }  // namespace drape::testing
