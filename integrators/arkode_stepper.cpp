@@ -76,6 +76,8 @@ void ArkodeStepper::create(double t) {
       "ARKStepCreate"));
   void* mem = m_arkode.get();
   check_sundials(ARKStepSetUserData(mem, this), "ARKStepSetUserData");
+  // ARKODE would print its failures to stderr; they go into the IntegratorFailure instead.
+  check_sundials(ARKStepSetErrHandlerFn(mem, record_error, this), "ARKStepSetErrHandlerFn");
   // The tolerances also set Newton's stopping test, so fixed-step runs need them too.
   check_sundials(ARKStepSStolerances(mem, m_options.rtol, m_options.atol), "ARKStepSStolerances");
   if (m_options.adaptive) {
@@ -127,16 +129,21 @@ void ArkodeStepper::restart(double initial_step) {
   m_seen = read_counts();
 }
 
+void ArkodeStepper::record_error(int, const char*, const char*, char* message, void* self) {
+  static_cast<ArkodeStepper*>(self)->m_arkode_message = message;
+}
+
 double ArkodeStepper::step(double t_stop) {
   void* mem = m_arkode.get();
   const double target =
       m_options.adaptive ? t_stop : fixed_step_end(m_options.dt, m_t, t_stop);
   check_sundials(ARKStepSetStopTime(mem, target), "ARKStepSetStopTime");
   m_corrections = 0;
+  m_arkode_message.clear();
   sunrealtype reached = m_t;
   const int flag = ARKStepEvolve(mem, target, m_y_vector.get(), &reached, ARK_ONE_STEP);
   accumulate_counters();  // a failed step's work counts too
-  check_sundials(flag, "ARKStepEvolve");
+  check_sundials(flag, "ARKStepEvolve", ARKStepGetReturnFlagName, m_arkode_message);
   m_last_step = reached - m_t;
   m_t = reached;
   // At the stop time ARKODE returns its interpolant, its solution to round-off: snap the fixed

@@ -1,4 +1,5 @@
 #pragma once
+#include <string>
 #include <optional>
 
 #include "integrators/arkode_tables.hpp"
@@ -44,6 +45,8 @@ class ArkodeStepper final : public Integrator {
   static int explicit_rhs(sunrealtype t, N_Vector y, N_Vector y_dot, void* self);
   static int implicit_rhs(sunrealtype t, N_Vector y, N_Vector y_dot, void* self);
   static int postprocess_step(sunrealtype t, N_Vector y, void* self);
+  static void record_error(int code, const char* module, const char* function, char* message,
+                           void* self);
   static int jacobian_times(N_Vector w, N_Vector j_w, sunrealtype t, N_Vector y, N_Vector f_y,
                             void* self, N_Vector tmp);
   static int preconditioner_setup(sunrealtype t, N_Vector y, N_Vector f_y, sunbooleantype jok,
@@ -57,6 +60,7 @@ class ArkodeStepper final : public Integrator {
   const ArkodeTable& m_table;
   std::optional<ReducedNewtonSolver> m_reduced;  // implicit kinds only
   int m_corrections = 0;  // penetrations corrected by postprocess_step during the last step
+  std::string m_arkode_message;  // ARKODE's explanation of the last failure
   ArkodeCounts m_seen;    // ARKODE's counters when m_counters was last updated
   long m_cg_seen = 0;
   // Declared in the order of construction; destroyed in reverse (ARKODE before its solver).

@@ -15,15 +15,18 @@ namespace drape::detail {
 /// Which ARKODE function names the flag: the integrator's own, or its linear-solver interface.
 using FlagNamer = char* (*)(long int);
 
-/// Throws IntegratorFailure(flag name, "<call> failed ...") when `flag` < 0; returns `flag`
-/// otherwise (positive flags such as ARK_TSTOP_RETURN are successes).
-inline int check_sundials(int flag, const char* call, FlagNamer namer = ARKStepGetReturnFlagName) {
+/// Throws IntegratorFailure(flag name, "<call> failed ...: <detail>") when `flag` < 0; returns
+/// `flag` otherwise (positive flags such as ARK_TSTOP_RETURN are successes). `detail` is
+/// ARKODE's own explanation, when it gave one.
+inline int check_sundials(int flag, const char* call, FlagNamer namer = ARKStepGetReturnFlagName,
+                          const std::string& detail = "") {
   if (flag >= 0) return flag;
   // ARKODE allocates the name with malloc and leaves it to the caller to free.
   const std::unique_ptr<char, decltype(&std::free)> name(namer(flag), &std::free);
   const std::string flag_name = name ? name.get() : "flag " + std::to_string(flag);
   throw IntegratorFailure(flag_name, std::string(call) + " failed with " + flag_name + " (" +
-                                         std::to_string(flag) + ")");
+                                         std::to_string(flag) + ")" +
+                                         (detail.empty() ? "" : ": " + detail));
 }
 
 /// Throws IntegratorFailure("ARK_MEM_FAIL") when a SUNDIALS constructor returned null.
