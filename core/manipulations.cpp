@@ -218,7 +218,8 @@ void Manipulator::finish_attaches(double t, const Eigen::VectorXd& y, bool& chan
   const Dummy* dummy = m_system.dummy();
   const double delta = m_system.params().collision.threshold;
   for (auto it = m_attaching.begin(); it != m_attaching.end();) {
-    if (it->steps_left-- > 0) {
+    // Called once after every step: after attach_iterations steps the particle is fixed.
+    if (--it->steps_left > 0) {
       ++it;
       continue;
     }

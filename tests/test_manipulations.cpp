@@ -192,6 +192,7 @@ double attach_error(int iterations, const Vec3& gravity) {
   EXPECT_NE(fixed, events.end()) << describe(m, s.cloth());
   if (fixed == events.end()) return 1.0;
   EXPECT_TRUE(s.constraints().is_fixed(fixed->particle));
+  EXPECT_NEAR(fixed->t, 0.15 + iterations * dt, 1e-9) << "fixed after exactly its iterations";
   EXPECT_EQ(fixed->particle, 33);
   EXPECT_EQ(fixed->object_particle, cylinder->nearest(at_body).index);
   // The error is measured from where the particle was fixed.
