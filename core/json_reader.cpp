@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 namespace drape {
 
@@ -49,7 +50,10 @@ int JsonReader::integer(const std::string& key) {
   const auto& value = raw(key);
   if (!value.is_number_integer())
     throw error(key, "expected an integer, got " + value.dump());
-  return value.get<int>();
+  const auto wide = value.get<long long>();
+  if (wide < std::numeric_limits<int>::min() || wide > std::numeric_limits<int>::max())
+    throw error(key, "integer out of range: " + value.dump());
+  return static_cast<int>(wide);
 }
 
 int JsonReader::integer(const std::string& key, int fallback) {

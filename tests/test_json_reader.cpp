@@ -40,6 +40,10 @@ TEST(JsonReader, ErrorsNameFileAndFullPath) {
   EXPECT_EQ(message_of([&] { in.integer("n"); }), "f.json: cloth.n: expected an integer, got 1.5");
   EXPECT_EQ(message_of([&] { in.positive("a", -1.0); }), "f.json: cloth.a: must be positive, got -1.0");
   EXPECT_EQ(message_of([&] { in.finish(); }), "f.json: cloth.extra: unknown key");
+  const nlohmann::json huge = {{"rows", 10000000000LL}};
+  JsonReader big(huge, "f.json", "cloth");
+  EXPECT_EQ(message_of([&] { big.integer("rows"); }),
+            "f.json: cloth.rows: integer out of range: 10000000000");
 }
 
 TEST(JsonReader, MissingAndBrokenFilesNameTheFile) {
