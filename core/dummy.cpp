@@ -141,25 +141,32 @@ int Dummy::bracket(double y, double& t) const {
   return k;
 }
 
-double Dummy::section_radius(int k, double theta) const {
+Dummy::AngleBin Dummy::angle_bin(double theta) const {
   const int m = points();
   double u = theta * (m / kTwoPi);
   u -= m * std::floor(u / m);  // wrap into [0, m)
   int j = static_cast<int>(u);
   if (j >= m) j = m - 1;  // u rounded up to m
-  const double f = u - j;
-  const int j1 = j + 1 == m ? 0 : j + 1;
-  return (1.0 - f) * m_sections.radius(k, j) + f * m_sections.radius(k, j1);
+  return {j, j + 1 == m ? 0 : j + 1, u - j};
+}
+
+double Dummy::section_radius(int k, double theta) const {
+  const AngleBin b = angle_bin(theta);
+  return (1.0 - b.f) * m_sections.radius(k, b.j) + b.f * m_sections.radius(k, b.j1);
 }
 
 double Dummy::section_radius_slope(int k, double theta) const {
-  const int m = points();
-  double u = theta * (m / kTwoPi);
-  u -= m * std::floor(u / m);
-  int j = static_cast<int>(u);
-  if (j >= m) j = m - 1;
-  const int j1 = j + 1 == m ? 0 : j + 1;
-  return (m_sections.radius(k, j1) - m_sections.radius(k, j)) * (m / kTwoPi);
+  const AngleBin b = angle_bin(theta);
+  return (m_sections.radius(k, b.j1) - m_sections.radius(k, b.j)) * (points() / kTwoPi);
+}
+
+Eigen::Vector2d Dummy::axis_between(int k, double t) const {
+  return {(1.0 - t) * m_sections.cx[k] + t * m_sections.cx[k + 1],
+          (1.0 - t) * m_sections.cz[k] + t * m_sections.cz[k + 1]};
+}
+
+double Dummy::radius_between(int k, double t, double theta) const {
+  return (1.0 - t) * section_radius(k, theta) + t * section_radius(k + 1, theta);
 }
 
 std::optional<SurfaceGap> Dummy::surface_gap(const Vec3& p) const {
@@ -168,8 +175,7 @@ std::optional<SurfaceGap> Dummy::surface_gap(const Vec3& p) const {
   double t = 0.0;
   const int k = bracket(p.y(), t);
   const double dy = ys[k] - ys[k + 1];
-  const Eigen::Vector2d axis((1.0 - t) * m_sections.cx[k] + t * m_sections.cx[k + 1],
-                             (1.0 - t) * m_sections.cz[k] + t * m_sections.cz[k + 1]);
+  const Eigen::Vector2d axis = axis_between(k, t);
   // d(axis)/dy: t grows downwards, so dt/dy = -1/dy.
   const Eigen::Vector2d axis_slope((m_sections.cx[k] - m_sections.cx[k + 1]) / dy,
                                    (m_sections.cz[k] - m_sections.cz[k + 1]) / dy);
@@ -197,22 +203,22 @@ std::optional<SurfaceGap> Dummy::surface_gap(const Vec3& p) const {
 double Dummy::surface_radius(double y, double theta) const {
   double t = 0.0;
   const int k = bracket(y, t);
-  return (1.0 - t) * section_radius(k, theta) + t * section_radius(k + 1, theta);
+  return radius_between(k, t, theta);
 }
 
 Eigen::Vector2d Dummy::axis_at(double y) const {
   double t = 0.0;
   const int k = bracket(y, t);
-  return {(1.0 - t) * m_sections.cx[k] + t * m_sections.cx[k + 1],
-          (1.0 - t) * m_sections.cz[k] + t * m_sections.cz[k + 1]};
+  return axis_between(k, t);
 }
 
 bool Dummy::inside(const Vec3& p) const {
   if (!(p.y() <= m_sections.y.front() && p.y() >= m_sections.y.back())) return false;
   double t = 0.0;
   const int k = bracket(p.y(), t);
-  const double dx = p.x() - ((1.0 - t) * m_sections.cx[k] + t * m_sections.cx[k + 1]);
-  const double dz = p.z() - ((1.0 - t) * m_sections.cz[k] + t * m_sections.cz[k + 1]);
+  const Eigen::Vector2d axis = axis_between(k, t);
+  const double dx = p.x() - axis.x();
+  const double dz = p.z() - axis.y();
   const double d2 = dx * dx + dz * dz;
   // The surface radius at any angle lies between the interpolated per-section extremes, which
   // settles most points without an atan2.
@@ -221,7 +227,7 @@ bool Dummy::inside(const Vec3& p) const {
   const double high = (1.0 - t) * m_max_radius[k] + t * m_max_radius[k + 1];
   if (d2 >= high * high) return false;
   const double theta = std::atan2(dx, dz);
-  const double r = (1.0 - t) * section_radius(k, theta) + t * section_radius(k + 1, theta);
+  const double r = radius_between(k, t, theta);
   return d2 < r * r;
 }
 
@@ -231,11 +237,11 @@ double Dummy::outside_margin(const Vec3& p) const {
   const double out_of_range = std::max(p.y() - ys.front(), ys.back() - p.y());
   double t = 0.0;
   const int k = bracket(p.y(), t);
-  const double dx = p.x() - ((1.0 - t) * m_sections.cx[k] + t * m_sections.cx[k + 1]);
-  const double dz = p.z() - ((1.0 - t) * m_sections.cz[k] + t * m_sections.cz[k + 1]);
+  const Eigen::Vector2d axis = axis_between(k, t);
+  const double dx = p.x() - axis.x();
+  const double dz = p.z() - axis.y();
   const double theta = std::atan2(dx, dz);
-  const double gap = std::sqrt(dx * dx + dz * dz) -
-                     ((1.0 - t) * section_radius(k, theta) + t * section_radius(k + 1, theta));
+  const double gap = std::sqrt(dx * dx + dz * dz) - radius_between(k, t, theta);
   const double margin = std::max(out_of_range, gap / m_lipschitz);
   // The guard, far above the round-off of inside() and of this function for points within
   // metres of the origin, keeps a point whose margin we trust away from the surface.

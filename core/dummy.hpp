@@ -87,10 +87,19 @@ class Dummy {
  private:
   /// Section k with y_k >= y >= y_{k+1} (y clamped to the stack) and the weight t of k + 1.
   int bracket(double y, double& t) const;
+  /// The particles j, j1 on either side of angle theta and the weight f of j1.
+  struct AngleBin {
+    int j, j1;
+    double f;
+  };
+  AngleBin angle_bin(double theta) const;
   /// Radius of section k at angle theta, linear between its two neighbouring particles.
   double section_radius(int k, double theta) const;
   /// d/dtheta of section_radius (constant along each edge between two particles).
   double section_radius_slope(int k, double theta) const;
+  /// Section centre and surface radius at weight t between sections k and k + 1.
+  Eigen::Vector2d axis_between(int k, double t) const;
+  double radius_between(int k, double t, double theta) const;
 
   DummySections m_sections;
   Eigen::VectorXd m_positions;
