@@ -2,7 +2,9 @@
 // The paper's cloth model (section 2.1, Figure 1): particles on a grid joined by springs to
 // their nearest (structural), next-nearest (shear) and optionally second (bending) neighbours.
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "core/state.hpp"
 
@@ -27,7 +29,22 @@ struct ClothParams {
 /// The spring families of SPEC 2.
 enum class SpringFamily : std::uint8_t { structural, shear, bending };
 
-/// All springs as flat arrays that the force loops stream through.
+/// One spring family's offset as a stencil on the grid: spring (r, c) joins particle (r, c) to
+/// (r + dr, c + dc) wherever both are on the grid. Its springs share stiffness and rest length
+/// (the offset's length on the initial grid), and the springs of one grid row form a contiguous
+/// run in both particles, which the force loop streams through.
+struct SpringStencil {
+  int dr = 0;
+  int dc = 0;
+  double stiffness = 0.0;
+  double rest = 0.0;
+  SpringFamily family = SpringFamily::structural;
+
+  int first_col() const { return std::max(0, -dc); }
+  int end_col(int cols) const { return cols - std::max(0, dc); }
+};
+
+/// All springs as flat arrays, one entry per spring, for the Jacobian and energy loops.
 struct SpringSet {
   Eigen::ArrayXi first;       ///< particle i
   Eigen::ArrayXi second;      ///< particle j
@@ -42,7 +59,8 @@ struct SpringSet {
 struct Cloth {
   ClothParams params;
   Eigen::VectorXd rest_positions;  ///< 3N, the initial grid
-  SpringSet springs;
+  std::vector<SpringStencil> stencils;  ///< one per offset of a family with stiffness > 0
+  SpringSet springs;                    ///< the same springs, listed
 
   int size() const { return params.rows * params.cols; }
   int index(int row, int col) const { return row * params.cols + col; }

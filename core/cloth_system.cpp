@@ -11,6 +11,7 @@ ClothSystem::ClothSystem(Cloth cloth, std::shared_ptr<const Dummy> dummy, ForceP
     : m_cloth(std::move(cloth)),
       m_dummy(std::move(dummy)),
       m_collision(m_dummy, params.collision, m_cloth.size()),
+      m_spring_forces(m_cloth),
       m_params(params),
       m_constraints(m_cloth.size()) {}
 
@@ -21,41 +22,6 @@ Eigen::VectorXd ClothSystem::initial_state(double t) const {
   m_constraints.project(t, VecMap(y.data(), n3), VecMap(y.data() + n3, n3));
   return y;
 }
-
-namespace {
-
-// The spring loop, without the velocity loads of spring damping when it is off. Springs go in
-// pairs (one packed square root and division), their forces added in spring order.
-template <bool damped>
-void add_spring_forces(const SpringSet& springs, ConstVecRef x, ConstVecRef v, double c_spring,
-                       VecRef f) {
-  const auto& first = springs.first;
-  const auto& second = springs.second;
-  Eigen::Index e = 0;
-  for (; e + 1 < springs.size(); e += 2) {
-    const int i0 = first[e], j0 = second[e], i1 = first[e + 1], j1 = second[e + 1];
-    Vec3 force0, force1;
-    spring_pair_forces<damped>(
-        particle(x, j0) - particle(x, i0), particle(v, j0) - particle(v, i0),
-        springs.stiffness[e], springs.rest[e], particle(x, j1) - particle(x, i1),
-        particle(v, j1) - particle(v, i1), springs.stiffness[e + 1], springs.rest[e + 1],
-        c_spring, force0, force1);
-    particle(f, i0) += force0;
-    particle(f, j0) -= force0;
-    particle(f, i1) += force1;
-    particle(f, j1) -= force1;
-  }
-  if (e < springs.size()) {
-    const int i = first[e], j = second[e];
-    const Vec3 force = spring_pair_force<damped>(particle(x, j) - particle(x, i),
-                                                 particle(v, j) - particle(v, i),
-                                                 springs.stiffness[e], springs.rest[e], c_spring);
-    particle(f, i) += force;
-    particle(f, j) -= force;
-  }
-}
-
-}  // namespace
 
 void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f) const {
   forces(x, v, f, ForceSplit::all);
@@ -69,32 +35,22 @@ template <bool per_mass>
 void ClothSystem::evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit split) const {
   const bool with_springs = split != ForceSplit::non_springs;
   const bool with_rest = split != ForceSplit::springs;
-  const double c_spring = m_cloth.params.damping_spring;
   const double c_air = m_cloth.params.damping_air;
   const double m = particle_mass();
   const Vec3 weight = m * m_params.gravity;
-  const int n = num_particles();
+  const bool with_collision = m_dummy && with_rest;
+  const Eigen::ArrayX3d* springs =
+      with_springs ? &m_spring_forces.evaluate(x, v, m_cloth.params.damping_spring) : nullptr;
 
-  if (with_rest)
-    for (int i = 0; i < n; ++i) particle(f, i) = weight - c_air * particle(v, i);
-  else
-    f.setZero();
-
-  if (with_springs && c_spring != 0.0)
-    add_spring_forces<true>(m_cloth.springs, x, v, c_spring, f);
-  else if (with_springs)
-    add_spring_forces<false>(m_cloth.springs, x, v, c_spring, f);
-
-  // The last pass over particles: collision, then the division by the mass (a separate pass
-  // over 3N values would cost as much again).
-  if (m_dummy && with_rest) {
-    for (int i = 0; i < n; ++i) {
-      auto fi = particle(f, i);
-      fi += m_collision.force(i, particle(x, i));
-      if constexpr (per_mass) fi /= m;
-    }
-  } else if constexpr (per_mass) {
-    f /= m;
+  // One pass over particles gathers the terms and divides by the mass (a separate pass over 3N
+  // values would cost as much again), adding in registers and storing each particle once.
+  for (int i = 0; i < num_particles(); ++i) {
+    Vec3 total = Vec3::Zero();
+    if (springs) total = Vec3((*springs)(i, 0), (*springs)(i, 1), (*springs)(i, 2));
+    if (with_rest) total += weight - c_air * particle(v, i);
+    if (with_collision) total += m_collision.force(i, particle(x, i));
+    if constexpr (per_mass) total /= m;
+    particle(f, i) = total;
   }
 }
 

@@ -10,6 +10,7 @@
 #include "core/collision.hpp"
 #include "core/constraints.hpp"
 #include "core/dummy.hpp"
+#include "core/grid_spring_forces.hpp"
 
 namespace drape {
 
@@ -109,6 +110,9 @@ class ClothSystem {
   Cloth m_cloth;
   std::shared_ptr<const Dummy> m_dummy;
   Collision m_collision;
+  // Scratch of the spring loop: mutable so that force evaluation stays a const query (a system
+  // is never shared between threads).
+  mutable GridSpringForces m_spring_forces;
   ForceParams m_params;
   ConstraintSet m_constraints;
 };

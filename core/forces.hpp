@@ -49,46 +49,6 @@ inline Vec3 damping_force(const Vec3& d, const Vec3& w, double c) {
   return (c * w.dot(u)) * u;
 }
 
-/// Elastic plus damping force on i, spring_force + damping_force in one pass: one square root
-/// and one division per spring, the cost that the force loop pays for every spring. With
-/// `damped` false the damping term (c = 0) is left out and w is not read; the elastic part is
-/// the same bits either way.
-template <bool damped = true>
-inline Vec3 spring_pair_force(const Vec3& d, const Vec3& w, double k, double rest, double c) {
-  const double length2 = d.squaredNorm();
-  if (length2 < degenerate_length * degenerate_length) return Vec3::Zero();
-  const double length = std::sqrt(length2);
-  const double inv_length = 1.0 / length;
-  // Force = [k (L - L0) + c (w . d) / L] d / L.
-  double magnitude = k * (length - rest);
-  if constexpr (damped) magnitude += c * w.dot(d) * inv_length;
-  return (magnitude * inv_length) * d;
-}
-
-/// spring_pair_force for two springs at once, the same bits: the square roots and divisions of
-/// both go through one packed SSE2 instruction each (IEEE rounds them as the scalar ones), which
-/// halves the cost the spring loop is bound by.
-template <bool damped = true>
-inline void spring_pair_forces(const Vec3& d0, const Vec3& w0, double k0, double rest0,
-                               const Vec3& d1, const Vec3& w1, double k1, double rest1, double c,
-                               Vec3& force0, Vec3& force1) {
-  const Eigen::Array2d length2(d0.squaredNorm(), d1.squaredNorm());
-  if ((length2 < degenerate_length * degenerate_length).any()) {
-    force0 = spring_pair_force<damped>(d0, w0, k0, rest0, c);
-    force1 = spring_pair_force<damped>(d1, w1, k1, rest1, c);
-    return;
-  }
-  const Eigen::Array2d length = length2.sqrt();
-  const Eigen::Array2d inv_length = 1.0 / length;
-  double magnitude0 = k0 * (length[0] - rest0), magnitude1 = k1 * (length[1] - rest1);
-  if constexpr (damped) {
-    magnitude0 += c * w0.dot(d0) * inv_length[0];
-    magnitude1 += c * w1.dot(d1) * inv_length[1];
-  }
-  force0 = (magnitude0 * inv_length[0]) * d0;
-  force1 = (magnitude1 * inv_length[1]) * d1;
-}
-
 /// dF_i/dv_j of the spring damping: c u u^T.
 inline Mat3 damping_velocity_jacobian(const Vec3& d, double c) {
   const double length = d.norm();

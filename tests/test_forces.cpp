@@ -90,33 +90,6 @@ TEST(DampingKernel, DissipatesAndOpposesRelativeMotionAlongTheSpring) {
   EXPECT_GT(damping_force(Vec3(1, 0, 0), Vec3(2, 0, 0), 0.1).x(), 0.0);
 }
 
-TEST(SpringKernel, FusedPairForceIsElasticPlusDamping) {
-  std::mt19937 rng(6);
-  for (int trial = 0; trial < 200; ++trial) {
-    const Vec3 d = random_vec(rng, 0.05), w = random_vec(rng, 1.0);
-    const Vec3 expected = spring_force(d, 30.0, 0.02) + damping_force(d, w, 0.2);
-    EXPECT_LT((spring_pair_force(d, w, 30.0, 0.02, 0.2) - expected).norm(), 1e-14 * (1.0 + expected.norm()));
-  }
-  EXPECT_TRUE(spring_pair_force(Vec3::Zero(), Vec3::Ones(), 30.0, 0.02, 0.2).isZero());
-}
-
-TEST(SpringKernel, TwoSpringsAtOnceGiveTheSameBitsAsOneAtATime) {
-  std::mt19937 rng(8);
-  for (int trial = 0; trial < 200; ++trial) {
-    // Every tenth pair has a degenerate spring, first or second.
-    const Vec3 d0 = trial % 20 == 3 ? Vec3::Zero() : random_vec(rng, 0.05);
-    const Vec3 d1 = trial % 20 == 13 ? Vec3::Zero() : random_vec(rng, 0.05);
-    const Vec3 w0 = random_vec(rng, 1.0), w1 = random_vec(rng, 1.0);
-    Vec3 f0, f1;
-    spring_pair_forces(d0, w0, 30.0, 0.02, d1, w1, 20.0, 0.03, 0.2, f0, f1);
-    EXPECT_EQ(f0, spring_pair_force(d0, w0, 30.0, 0.02, 0.2));
-    EXPECT_EQ(f1, spring_pair_force(d1, w1, 20.0, 0.03, 0.2));
-    spring_pair_forces<false>(d0, w0, 30.0, 0.02, d1, w1, 20.0, 0.03, 0.0, f0, f1);
-    EXPECT_EQ(f0, spring_pair_force<false>(d0, w0, 30.0, 0.02, 0.0));
-    EXPECT_EQ(f1, spring_pair_force<false>(d1, w1, 20.0, 0.03, 0.0));
-  }
-}
-
 TEST(DampingKernel, JacobiansMatchForceDifferences) {
   std::mt19937 rng(4);
   for (int trial = 0; trial < 100; ++trial) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "core/grid_spring_forces.hpp"
 #include "draped_cloth.hpp"
 #include "integrators/leapfrog.hpp"
 
@@ -44,6 +45,34 @@ void BM_LeapfrogStep(benchmark::State& state) {
   report_per_particle(state, system->num_particles());
 }
 BENCHMARK(BM_LeapfrogStep)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMicrosecond);
+
+// The spring loop's kernel alone (every stencil, damped), by instruction set: 0 SSE2, 1 AVX (the
+// one the program picks on processors that have it).
+void BM_SpringKernel(benchmark::State& state) {
+  const bool avx = state.range(1) != 0;
+  if (avx && !spring_kernel::has_avx()) {
+    state.SkipWithError("this processor has no AVX");
+    return;
+  }
+  Eigen::VectorXd y;
+  auto system = draped_cloth(static_cast<int>(state.range(0)), y);
+  const Cloth& cloth = system->cloth();
+  const Eigen::Index n = cloth.size();
+  const Eigen::ArrayX3d x = Eigen::Map<const Eigen::Matrix3Xd>(y.data(), 3, n).transpose().array();
+  const Eigen::ArrayX3d v = Eigen::ArrayX3d::Zero(n, 3);
+  Eigen::ArrayX3d force(n, 3), row(cloth.params.cols, 3);
+  const spring_kernel::Arrays arrays = kernel_arrays(x, v, force, row);
+  const auto add = avx ? spring_kernel::add_avx : spring_kernel::add_sse2;
+  for (auto _ : state) {
+    force.setZero();
+    for (const SpringStencil& s : cloth.stencils)
+      add(kernel_stencil(s, cloth.params.rows, cloth.params.cols), cloth.params.damping_spring,
+          arrays);
+    benchmark::DoNotOptimize(force.data());
+  }
+  report_per_particle(state, static_cast<int>(n));
+}
+BENCHMARK(BM_SpringKernel)->ArgsProduct({{64}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 // Query points in a 2 cm shell around the dress form, as cloth particles in contact are.
 std::vector<Vec3> shell_points(int count) {

@@ -1,0 +1,37 @@
+#pragma once
+// The spring loop of the force evaluation (SPEC 4, elastic force and spring damping), stencil by
+// stencil on a structure-of-arrays copy of the state. The springs of one stencil in one grid row
+// join two contiguous runs of particles, so the kernel (spring_kernel.hpp) streams through
+// contiguous memory in packed SIMD, square roots and divisions included, with no gather or
+// scatter of 3-vectors.
+#include <vector>
+
+#include "core/cloth.hpp"
+#include "core/spring_kernel.hpp"
+#include "core/state.hpp"
+
+namespace drape {
+
+/// The kernel's description of a stencil's springs on a rows x cols grid.
+spring_kernel::Stencil kernel_stencil(const SpringStencil& stencil, int rows, int cols);
+/// The kernel's view of N x 3 arrays (`row_force`: cols x 3).
+spring_kernel::Arrays kernel_arrays(const Eigen::ArrayX3d& x, const Eigen::ArrayX3d& v,
+                                    Eigen::ArrayX3d& force, Eigen::ArrayX3d& row_force);
+
+/// Spring forces of a grid cloth into an N x 3 array (column k: component k of every particle).
+class GridSpringForces {
+ public:
+  explicit GridSpringForces(const Cloth& cloth);
+
+  /// Elastic plus damping (coefficient c) forces of every spring at (x, v), summed per
+  /// particle. With c = 0 the velocities are not read. The result lives until the next call.
+  const Eigen::ArrayX3d& evaluate(ConstVecRef x, ConstVecRef v, double c);
+
+ private:
+  std::vector<spring_kernel::Stencil> m_stencils;
+  Eigen::ArrayX3d m_x, m_v, m_force;  // N x 3
+  Eigen::ArrayX3d m_row_force;        // one row of springs, for stencils along rows
+  void (*m_add)(const spring_kernel::Stencil&, double, const spring_kernel::Arrays&);
+};
+
+}  // namespace drape
