@@ -61,7 +61,7 @@ namespace drape {
 namespace {
 
 TEST(Cloth, SpringsComeInClassesOfDisjointPairs) {
-  // The force loop relies on it: within a class no particle appears twice.
+  // The per-spring Jacobian loops rely on it: within a class no particle appears twice.
   const Cloth cloth = build_cloth(testing::small_cloth(7, 9));
   std::vector<int> last_class(cloth.size(), -1);
   int classes = 0;
