@@ -14,7 +14,8 @@ void add_sse2(const Stencil& stencil, double c, const Arrays& arrays) {
 }
 
 bool has_avx() {
-  static const bool avx = __builtin_cpu_supports("avx");
+  // cpu_init first: this may run before libgcc's own initialiser (static construction).
+  static const bool avx = (__builtin_cpu_init(), __builtin_cpu_supports("avx"));
   return avx;
 }
 
