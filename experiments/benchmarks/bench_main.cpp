@@ -32,17 +32,21 @@ void BM_Forces(benchmark::State& state) {
     benchmark::DoNotOptimize(f.data());
   }
   report_per_particle(state, system->num_particles());
+  if (system->dummy()) state.counters["in_contact"] = bench::contact_fraction(*system, y);
 }
 // Second argument: 1 with the dress form (collisions), 0 springs, gravity and damping alone.
 BENCHMARK(BM_Forces)->ArgsProduct({{32, 64, 128}, {1, 0}})->Unit(benchmark::kMicrosecond);
 
+// Steps of the settled drape (bench::settled_drape); `in_contact`: the fraction of particles
+// within the collision threshold at the end.
 void BM_LeapfrogStep(benchmark::State& state) {
   Eigen::VectorXd y;
-  auto system = draped_cloth(static_cast<int>(state.range(0)), y);
+  auto system = bench::settled_drape(static_cast<int>(state.range(0)), y);
   Leapfrog leapfrog(*system, 1e-4);
   leapfrog.reset(0.0, y);
   for (auto _ : state) leapfrog.step(1e9);
   report_per_particle(state, system->num_particles());
+  state.counters["in_contact"] = bench::contact_fraction(*system, leapfrog.state());
 }
 BENCHMARK(BM_LeapfrogStep)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMicrosecond);
 
