@@ -70,14 +70,13 @@ inline double contact_fraction(const ClothSystem& system, const Eigen::VectorXd&
 /// balance: left to itself it leaves the dress form within 0.2 s.
 inline std::unique_ptr<ClothSystem> settled_drape(int n, Eigen::VectorXd& y,
                                                   double settle_time = 0.3) {
-  const ClothParams placed = draped_cloth(n, y)->cloth().params;
+  const auto wrapped = draped_cloth(n, y);
+  const ClothParams placed = wrapped->cloth().params;
   const auto build = [&](double damping_air) {
     ClothParams p = placed;
     p.spacing *= 0.85;
     p.damping_air = damping_air;
-    ForceParams forces;
-    forces.collision = {0.01, 1000.0};
-    auto system = std::make_unique<ClothSystem>(build_cloth(p), dress_form(), forces);
+    auto system = std::make_unique<ClothSystem>(build_cloth(p), dress_form(), wrapped->params());
     for (int k = 0; k < n; ++k)
       for (const int i : {k, k * n, k * n + n - 1})
         system->constraints().fix_at(i, y.segment<3>(3 * i));
