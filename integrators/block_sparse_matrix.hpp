@@ -34,9 +34,14 @@ class BlockSparseMatrix {
   void precondition_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& out) const;
   /// One block Gauss-Seidel sweep on A x = b, rows ascending (`forward`) or descending.
   void gauss_seidel(const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) const;
+  /// The forward sweep from x = 0, x = (D + L)^-1 b, and the residual it leaves,
+  /// b - A x = -U x: together one pass over the blocks instead of a sweep and a product.
+  void forward_sweep_from_zero(const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                               Eigen::VectorXd& residual) const;
 
  private:
   std::vector<int> m_row_start{0}, m_column;  // row_start of an empty matrix: rows() = 0
+  std::vector<int> m_upper_start;  // row i's first block right of the diagonal
   std::vector<Mat3> m_blocks, m_diagonal_inverse;
 };
 

@@ -7,11 +7,12 @@ namespace drape {
 
 std::optional<ReducedSolve> reduced_solve_named(const std::string& name) {
   if (name == "pcg-reduced") return ReducedSolve::conjugate_gradients;
+  if (name == "pcg-multigrid") return ReducedSolve::multigrid_cg;
   if (name == "sparse-direct") return ReducedSolve::sparse_ldlt;
   return std::nullopt;
 }
 
-std::string reduced_solve_names() { return "pcg-reduced, sparse-direct"; }
+std::string reduced_solve_names() { return "pcg-reduced, pcg-multigrid, sparse-direct"; }
 
 namespace {
 
@@ -83,6 +84,7 @@ void ReducedNewtonSolver::form_system() {
   assemble_block_rows();
   // Each diagonal block is symmetric positive definite (a principal block of S).
   m_matrix.invert_diagonal();
+  if (m_method == ReducedSolve::multigrid_cg) m_multigrid.update(m_matrix);
 }
 
 void ReducedNewtonSolver::build_block_rows() {
@@ -95,6 +97,10 @@ void ReducedNewtonSolver::build_block_rows() {
     const int i = springs.first[e], j = springs.second[e];
     m_spring_blocks[2 * static_cast<std::size_t>(e)] = m_matrix.find(i, j);
     m_spring_blocks[2 * static_cast<std::size_t>(e) + 1] = m_matrix.find(j, i);
+  }
+  if (m_method == ReducedSolve::multigrid_cg) {
+    const ClothParams& grid = m_system.cloth().params;
+    m_multigrid.build(m_matrix, grid.rows, grid.cols);
   }
 }
 
@@ -109,6 +115,18 @@ void ReducedNewtonSolver::assemble_block_rows() {
     blocks[static_cast<std::size_t>(m_spring_blocks[2 * e])] -= m_coupling[e];
     blocks[static_cast<std::size_t>(m_spring_blocks[2 * e + 1])] -= m_coupling[e];
   }
+}
+
+void ReducedNewtonSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out) {
+  if (m_method == ReducedSolve::conjugate_gradients) {
+    m_matrix.precondition_jacobi(r, out);
+    return;
+  }
+  // The V-cycle mixes fixed particles into aggregates with free ones; their rows of S are
+  // decoupled (M I), so zeroing them keeps the preconditioner symmetric positive definite on
+  // the free particles, where CG's iterates live.
+  m_multigrid.apply(m_matrix, r, out);
+  m_system.constraints().zero_fixed(out);
 }
 
 void ReducedNewtonSolver::build_pattern() {
@@ -235,7 +253,7 @@ bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorX
     m_residual = b;
   }
   if (m_residual.norm() <= m_tolerance * b_norm) return true;
-  m_matrix.precondition_jacobi(m_residual, m_preconditioned);
+  precondition(m_residual, m_preconditioned);
   m_direction = m_preconditioned;
   double rho = m_residual.dot(m_preconditioned);
   for (int k = 0; k < m_max_iterations; ++k) {
@@ -245,7 +263,7 @@ bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorX
     m_residual -= alpha * m_product;
     ++m_iterations;
     if (m_residual.norm() <= m_tolerance * b_norm) return true;
-    m_matrix.precondition_jacobi(m_residual, m_preconditioned);
+    precondition(m_residual, m_preconditioned);
     const double rho_next = m_residual.dot(m_preconditioned);
     m_direction = m_preconditioned + (rho_next / rho) * m_direction;
     rho = rho_next;

@@ -12,8 +12,8 @@
 // S has the spring graph's 3x3 block sparsity, which never changes: a spring e = (i, j) with
 // Jacobian blocks K_e, D_e couples i and j through -C_e, C_e = gamma D_e + gamma^2 K_e, and adds
 // C_e to both diagonal blocks. CG keeps S by block rows (detail::BlockSparseMatrix) and
-// preconditions with its block diagonal; the factorisation fills a compressed matrix whose
-// pattern and symbolic analysis are built once.
+// preconditions with its block diagonal or a multigrid V-cycle on the cloth grid; the
+// factorisation fills a compressed matrix whose pattern and symbolic analysis are built once.
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <optional>
@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/cloth_system.hpp"
+#include "integrators/aggregation_multigrid.hpp"
 #include "integrators/block_sparse_matrix.hpp"
 
 namespace drape {
@@ -28,6 +29,7 @@ namespace drape {
 /// How the reduced system S is solved.
 enum class ReducedSolve {
   conjugate_gradients,  ///< `pcg-reduced`: block-Jacobi preconditioned CG on S
+  multigrid_cg,         ///< `pcg-multigrid`: CG on S preconditioned by an aggregation V-cycle
   sparse_ldlt,          ///< `sparse-direct`: Eigen's SimplicialLDLT factorisation of S
 };
 
@@ -75,6 +77,7 @@ class ReducedNewtonSolver {
   void assemble_matrix();
   void build_block_rows();
   void assemble_block_rows();
+  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out);
   /// out = K r_x + D w with the unclamped columns of fixed particles (rows not zeroed).
   void jacobian_times(ConstVecRef r_x, const Eigen::VectorXd& w, Eigen::VectorXd& out) const;
   bool solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v, CgStart start);
@@ -91,9 +94,10 @@ class ReducedNewtonSolver {
   std::vector<Mat3> m_coupling;  // C_e, zero when an end is fixed (S_ij = -C_e on free pairs)
   std::vector<Mat3> m_diagonal;  // S_ii (M on a fixed particle)
   // CG only: S by block rows, spring e's blocks (i, j) at m_spring_blocks[2e] and (j, i) at
-  // [2e + 1].
+  // [2e + 1], and the multigrid levels of pcg-multigrid.
   detail::BlockSparseMatrix m_matrix;
   std::vector<int> m_spring_blocks;
+  detail::AggregationMultigrid m_multigrid;
   // sparse-direct only: S in a pattern built once, its blocks' slots, the symbolic analysis.
   Eigen::SparseMatrix<double> m_s;
   std::vector<BlockSlot> m_diagonal_slots, m_spring_slots;  // spring e: (i, j) at 2e, (j, i) at 2e+1

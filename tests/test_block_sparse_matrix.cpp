@@ -61,6 +61,11 @@ TEST(BlockSparseMatrix, ProductAndSweepsMatchTheDenseMatrix) {
   x = p;
   a.gauss_seidel(b, x, false);
   EXPECT_LT(((d + u) * x - (b - l * p)).norm(), 1e-12 * b.norm());
+  // From zero, the fused sweep gives the forward sweep and its residual.
+  Eigen::VectorXd residual;
+  a.forward_sweep_from_zero(b, x, residual);
+  EXPECT_LT(((d + l) * x - b).norm(), 1e-12 * b.norm());
+  EXPECT_LT((residual - (b - dense * x)).norm(), 1e-12 * b.norm());
 }
 
 }  // namespace
