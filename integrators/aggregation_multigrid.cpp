@@ -10,6 +10,10 @@ namespace {
 // The coarsest grid is solved densely: 16 nodes are a 48 x 48 Cholesky factorisation, far
 // cheaper than a fine-grid sweep.
 constexpr int coarsest_nodes = 16;
+// Over-correction (Vanek, Mandel and Brezina's "scaled" aggregation): a piecewise-constant
+// prolongation undershoots smooth errors, so the coarse correction is stretched. CG iterations
+// a step on the 64x64 benchmark for 1, 1.25, 1.5, 1.75, 2: 11.4, 10.0, 9.1, 9.4, 9.8.
+constexpr double over_correction = 1.5;
 
 Eigen::MatrixXd dense(const BlockSparseMatrix& a) {
   const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(a.rows());
@@ -92,7 +96,7 @@ void AggregationMultigrid::cycle(const BlockSparseMatrix& a, std::size_t next,
     particle(coarse.b, aggregate(i)) += particle(coarse.finer_residual, i);
   cycle(coarse.matrix, next + 1, coarse.b, coarse.x);
   for (Eigen::Index i = 0; i < a.rows(); ++i)
-    particle(x, i) += particle(coarse.x, aggregate(i));
+    particle(x, i) += over_correction * particle(coarse.x, aggregate(i));
   a.gauss_seidel(b, x, false);
 }
 

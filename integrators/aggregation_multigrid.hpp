@@ -8,9 +8,12 @@
 // the grid's spring offsets inside an aggregate's neighbours, every level keeps the fine
 // pattern's shape, and forming the coarse values is one pass of block additions through a map
 // built once. The cycle smooths with one forward block Gauss-Seidel sweep before the coarse
-// correction and one backward sweep after it, and solves the coarsest level (at most 16 nodes)
-// by a dense Cholesky factorisation: the preconditioner is then symmetric, and positive
-// definite for SPD A (Gauss-Seidel converges on SPD matrices), as CG needs.
+// correction (scaled by a constant over-correction factor) and one backward sweep after it,
+// and solves the coarsest level (at most 16 nodes) by a dense Cholesky factorisation. The
+// preconditioner B is then symmetric, and positive definite for SPD A: with G the forward
+// sweep's error propagation (an A-norm contraction, Gauss-Seidel on SPD A) and C >= 0 the
+// scaled coarse correction, I - BA = G' (I - C A) G has A-norm energy below |G e|_A^2 < |e|_A^2,
+// so BA's eigenvalues are positive, as CG needs.
 // Vanek, Mandel and Brezina 1996 (Computing 56, unsmoothed aggregation); Trottenberg,
 // Oosterlee and Schuller 2001 ("Multigrid", section 2.4 on symmetric cycles).
 #include <Eigen/Cholesky>

@@ -14,7 +14,8 @@ detail::BlockSparseMatrix chain(Eigen::MatrixXd& dense) {
   detail::BlockSparseMatrix a;
   a.set_pattern({{1, 3}, {0, 2}, {1}, {0}});
   dense = Eigen::MatrixXd::Zero(12, 12);
-  const Eigen::VectorXd values = testing::jitter(Eigen::VectorXd::Zero(9 * 8), 1.0, 3);
+  const Eigen::VectorXd values =
+      testing::jitter(Eigen::VectorXd::Zero(9 * a.row_start(a.rows())), 1.0, 3);
   for (int i = 0; i < a.rows(); ++i)
     for (int k = a.row_start(i); k < a.row_start(i + 1); ++k) {
       Mat3 block = Eigen::Map<const Mat3>(values.data() + 9 * k);
