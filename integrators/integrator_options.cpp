@@ -35,7 +35,7 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
 }
 
 std::string linear_solver_of(const IntegratorOptions& options) {
-  return options.linear_solver.empty() ? "pcg-reduced" : options.linear_solver;
+  return options.linear_solver.empty() ? "pcg-multigrid" : options.linear_solver;
 }
 
 double default_linear_tolerance(const std::string& name) {
