@@ -97,7 +97,7 @@ void AggregationMultigrid::cycle(const BlockSparseMatrix& a, std::size_t next,
   cycle(coarse.matrix, next + 1, coarse.b, coarse.x);
   for (Eigen::Index i = 0; i < a.rows(); ++i)
     particle(x, i) += over_correction * particle(coarse.x, aggregate(i));
-  a.gauss_seidel(b, x, false);
+  a.backward_sweep(b, x);
 }
 
 }  // namespace drape::detail

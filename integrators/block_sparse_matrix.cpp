@@ -54,11 +54,8 @@ void BlockSparseMatrix::precondition_jacobi(const Eigen::VectorXd& r, Eigen::Vec
     particle(out, i).noalias() = m_diagonal_inverse[static_cast<std::size_t>(i)] * particle(r, i);
 }
 
-void BlockSparseMatrix::gauss_seidel(const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                     bool forward) const {
-  const int n = rows();
-  for (int step = 0; step < n; ++step) {
-    const int i = forward ? step : n - 1 - step;
+void BlockSparseMatrix::backward_sweep(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  for (int i = rows() - 1; i >= 0; --i) {
     Vec3 sum = particle(b, i);
     for (int k = row_start(i) + 1; k < row_start(i + 1); ++k)
       sum.noalias() -= m_blocks[static_cast<std::size_t>(k)] * particle(x, column(k));

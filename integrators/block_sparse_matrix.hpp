@@ -27,15 +27,16 @@ class BlockSparseMatrix {
 
   /// out = A p.
   void multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const;
-  /// Inverts the diagonal blocks for precondition_jacobi() and gauss_seidel(); they must be
+  /// Inverts the diagonal blocks for precondition_jacobi() and the sweeps; they must be
   /// invertible (symmetric positive definite for an SPD matrix).
   void invert_diagonal();
   /// out = D^-1 r, D the block diagonal.
   void precondition_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& out) const;
-  /// One block Gauss-Seidel sweep on A x = b, rows ascending (`forward`) or descending.
-  void gauss_seidel(const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) const;
-  /// The forward sweep from x = 0, x = (D + L)^-1 b, and the residual it leaves,
-  /// b - A x = -U x: together one pass over the blocks instead of a sweep and a product.
+  /// One block Gauss-Seidel sweep on A x = b with rows descending:
+  /// x = (D + U)^-1 (b - L x), L and U the blocks left and right of the diagonal.
+  void backward_sweep(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  /// The forward sweep (rows ascending) from x = 0, x = (D + L)^-1 b, and the residual it
+  /// leaves, b - A x = -U x: together one pass over the blocks instead of a sweep and a product.
   void forward_sweep_from_zero(const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                Eigen::VectorXd& residual) const;
 

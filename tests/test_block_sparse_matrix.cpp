@@ -55,15 +55,11 @@ TEST(BlockSparseMatrix, ProductAndSweepsMatchTheDenseMatrix) {
       (i == j ? d : i > j ? l : u).block<3, 3>(3 * i, 3 * j) = dense.block<3, 3>(3 * i, 3 * j);
   a.precondition_jacobi(b, out);
   EXPECT_LT((d * out - b).norm(), 1e-13 * b.norm());
-  // A forward sweep solves (D + L) x_new = b - U x_old; a backward one (D + U) x_new = b - L x_old.
-  Eigen::VectorXd x = p;
-  a.gauss_seidel(b, x, true);
-  EXPECT_LT(((d + l) * x - (b - u * p)).norm(), 1e-12 * b.norm());
-  x = p;
-  a.gauss_seidel(b, x, false);
+  // A backward sweep solves (D + U) x_new = b - L x_old; the forward one from zero
+  // (D + L) x = b, and its residual is b - A x.
+  Eigen::VectorXd x = p, residual;
+  a.backward_sweep(b, x);
   EXPECT_LT(((d + u) * x - (b - l * p)).norm(), 1e-12 * b.norm());
-  // From zero, the fused sweep gives the forward sweep and its residual.
-  Eigen::VectorXd residual;
   a.forward_sweep_from_zero(b, x, residual);
   EXPECT_LT(((d + l) * x - b).norm(), 1e-12 * b.norm());
   EXPECT_LT((residual - (b - dense * x)).norm(), 1e-12 * b.norm());
