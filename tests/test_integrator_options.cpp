@@ -6,15 +6,21 @@
 namespace drape {
 namespace {
 
-TEST(IntegratorOptions, ImplicitSolvesDefaultToMultigridCg) {
+TEST(IntegratorOptions, LinearSolverAndToleranceDefaultPerIntegrator) {
   IntegratorOptions o;
   o.name = "implicit-euler";
   EXPECT_EQ(linear_solver_of(o), "pcg-multigrid");
   EXPECT_EQ(linear_tolerance_of(o), 1e-3);
   o.linear_solver = "pcg-reduced";
   EXPECT_EQ(linear_solver_of(o), "pcg-reduced");
-  o.name = "arkode-dirk";
-  EXPECT_EQ(linear_tolerance_of(o), 1e-8);
+  for (const char* name : {"arkode-dirk", "arkode-imex"}) {
+    IntegratorOptions arkode;
+    arkode.name = name;
+    EXPECT_EQ(linear_solver_of(arkode), "pcg-reduced") << name;
+    EXPECT_EQ(linear_tolerance_of(arkode), 1e-8) << name;
+    arkode.linear_solver = "pcg-multigrid";
+    EXPECT_EQ(linear_solver_of(arkode), "pcg-multigrid") << name;
+  }
 }
 
 }  // namespace

@@ -66,6 +66,8 @@ const BenchCase cases[] = {
     // (docs/integrators.md): the same methods with error-controlled steps up to 1/30 s.
     {"arkode-dirk/pcg-reduced/adaptive", "arkode-dirk", "pcg-reduced", 1.0 / 30.0, true},
     {"arkode-imex/pcg-reduced/adaptive", "arkode-imex", "pcg-reduced", 1.0 / 30.0, true},
+    {"arkode-dirk/pcg-multigrid/adaptive", "arkode-dirk", "pcg-multigrid", 1.0 / 30.0, true},
+    {"arkode-imex/pcg-multigrid/adaptive", "arkode-imex", "pcg-multigrid", 1.0 / 30.0, true},
 };
 
 const bool registered = [] {
