@@ -104,7 +104,8 @@ void ArkodeStepper::set_up_newton() {
   void* mem = m_arkode.get();
   // CG inside the preconditioner is not a fixed linear operator: flexible GMRES tolerates that;
   // the factorised solve is one, and plain GMRES is enough.
-  const bool inexact = linear_solver_of(m_options) == "pcg-reduced";
+  const bool inexact =
+      *reduced_solve_named(linear_solver_of(m_options)) != ReducedSolve::sparse_ldlt;
   m_linear_solver.reset(detail::check_created(
       inexact ? SUNLinSol_SPFGMR(m_y_vector.get(), SUN_PREC_RIGHT, krylov_dimension, m_context)
               : SUNLinSol_SPGMR(m_y_vector.get(), SUN_PREC_RIGHT, krylov_dimension, m_context),

@@ -15,7 +15,8 @@ struct IntegratorOptions {
   double rtol = 1e-4;             ///< relative tolerance of adaptive runs
   double atol = 1e-7;             ///< absolute tolerance of adaptive runs
   double max_dt = 0.0;            ///< largest adaptive step, 0 = unbounded
-  /// Implicit solves (docs/integrators.md), implicit integrators only; "" = pcg-reduced.
+  /// Implicit solves (docs/integrators.md), implicit integrators only; "" = the default of
+  /// linear_solver_of().
   std::string linear_solver;
   int max_newton_iters = 10;      ///< Newton iterations per stage before a failure
   /// Relative residual of the iterative linear solvers; 0 = default_linear_tolerance(name).
@@ -24,7 +25,8 @@ struct IntegratorOptions {
   long max_steps = 100000000;     ///< safety bound on steps per run
 };
 
-/// The linear solver an implicit integrator uses: `linear_solver`, or pcg-reduced when empty.
+/// The linear solver an implicit integrator uses: `linear_solver`, or when empty pcg-multigrid
+/// for implicit-euler and pcg-reduced inside ARKODE (measured, docs/integrators.md).
 std::string linear_solver_of(const IntegratorOptions& options);
 /// CG's relative residual when `linear_tolerance` is 0: 1e-3 for implicit-euler (its single
 /// linearised step is first order: a 1e-3 residual stays below its truncation error at any

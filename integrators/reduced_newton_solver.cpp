@@ -7,11 +7,31 @@ namespace drape {
 
 std::optional<ReducedSolve> reduced_solve_named(const std::string& name) {
   if (name == "pcg-reduced") return ReducedSolve::conjugate_gradients;
+  if (name == "pcg-multigrid") return ReducedSolve::multigrid_cg;
   if (name == "sparse-direct") return ReducedSolve::sparse_ldlt;
   return std::nullopt;
 }
 
-std::string reduced_solve_names() { return "pcg-reduced, sparse-direct"; }
+std::string reduced_solve_names() { return "pcg-reduced, pcg-multigrid, sparse-direct"; }
+
+namespace {
+
+// Each particle's spring neighbours, ascending, without duplicates (two springs may join the
+// same pair) and without the particle itself: S's off-diagonal block pattern.
+std::vector<std::vector<int>> spring_neighbours(const SpringSet& springs, int n) {
+  std::vector<std::vector<int>> rows(static_cast<std::size_t>(n));
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    rows[static_cast<std::size_t>(springs.second[e])].push_back(springs.first[e]);
+    rows[static_cast<std::size_t>(springs.first[e])].push_back(springs.second[e]);
+  }
+  for (auto& list : rows) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return rows;
+}
+
+}  // namespace
 
 ReducedNewtonSolver::ReducedNewtonSolver(const ClothSystem& system, ReducedSolve method,
                                          ForceSplit split, double tolerance, int max_iterations)
@@ -60,9 +80,53 @@ void ReducedNewtonSolver::form_system() {
     m_ldlt.factorize(m_s);
     return;
   }
+  if (m_matrix.rows() == 0) build_block_rows();
+  assemble_block_rows();
   // Each diagonal block is symmetric positive definite (a principal block of S).
-  m_diagonal_inverse.resize(n);
-  for (std::size_t i = 0; i < n; ++i) m_diagonal_inverse[i] = m_diagonal[i].inverse();
+  m_matrix.invert_diagonal();
+  if (m_method == ReducedSolve::multigrid_cg) m_multigrid.update(m_matrix);
+}
+
+void ReducedNewtonSolver::build_block_rows() {
+  // Like the compressed pattern, the block rows depend on the springs alone: fixed particles'
+  // couplings are stored as zeros.
+  const SpringSet& springs = m_system.cloth().springs;
+  m_matrix.set_pattern(spring_neighbours(springs, m_system.num_particles()));
+  m_spring_blocks.resize(2 * static_cast<std::size_t>(springs.size()));
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    const int i = springs.first[e], j = springs.second[e];
+    m_spring_blocks[2 * static_cast<std::size_t>(e)] = m_matrix.find(i, j);
+    m_spring_blocks[2 * static_cast<std::size_t>(e) + 1] = m_matrix.find(j, i);
+  }
+  if (m_method == ReducedSolve::multigrid_cg) {
+    const ClothParams& grid = m_system.cloth().params;
+    m_multigrid.build(m_matrix, grid.rows, grid.cols);
+  }
+}
+
+void ReducedNewtonSolver::assemble_block_rows() {
+  std::vector<Mat3>& blocks = m_matrix.blocks();
+  // Accumulated, not written: two springs may join the same pair.
+  std::fill(blocks.begin(), blocks.end(), Mat3::Zero());
+  for (std::size_t i = 0; i < m_diagonal.size(); ++i)
+    blocks[static_cast<std::size_t>(m_matrix.row_start(static_cast<int>(i)))] = m_diagonal[i];
+  // C_e is symmetric (the definite Jacobian has no damping position term): S_ij = S_ji = -C_e.
+  for (std::size_t e = 0; e < m_coupling.size(); ++e) {
+    blocks[static_cast<std::size_t>(m_spring_blocks[2 * e])] -= m_coupling[e];
+    blocks[static_cast<std::size_t>(m_spring_blocks[2 * e + 1])] -= m_coupling[e];
+  }
+}
+
+void ReducedNewtonSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out) {
+  if (m_method == ReducedSolve::conjugate_gradients) {
+    m_matrix.precondition_jacobi(r, out);
+    return;
+  }
+  // The V-cycle mixes fixed particles into aggregates with free ones; their rows of S are
+  // decoupled (M I), so zeroing them keeps the preconditioner symmetric positive definite on
+  // the free particles, where CG's iterates live.
+  m_multigrid.apply(m_matrix, r, out);
+  m_system.constraints().zero_fixed(out);
 }
 
 void ReducedNewtonSolver::build_pattern() {
@@ -71,15 +135,10 @@ void ReducedNewtonSolver::build_pattern() {
   // the fill-reducing ordering serve every later step, whatever the fixed set.
   const SpringSet& springs = m_system.cloth().springs;
   const int n = m_system.num_particles();
-  std::vector<std::vector<int>> rows(static_cast<std::size_t>(n));
-  for (int q = 0; q < n; ++q) rows[static_cast<std::size_t>(q)].push_back(q);
-  for (Eigen::Index e = 0; e < springs.size(); ++e) {
-    rows[static_cast<std::size_t>(springs.second[e])].push_back(springs.first[e]);
-    rows[static_cast<std::size_t>(springs.first[e])].push_back(springs.second[e]);
-  }
-  for (auto& list : rows) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
+  std::vector<std::vector<int>> rows = spring_neighbours(springs, n);
+  for (int q = 0; q < n; ++q) {
+    auto& list = rows[static_cast<std::size_t>(q)];
+    list.insert(std::upper_bound(list.begin(), list.end(), q), q);
   }
   std::vector<Eigen::Index> column_start(static_cast<std::size_t>(n) + 1, 0);
   for (std::size_t q = 0; q < rows.size(); ++q)
@@ -132,22 +191,6 @@ void ReducedNewtonSolver::assemble_matrix() {
   }
 }
 
-void ReducedNewtonSolver::multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const {
-  const SpringSet& springs = m_system.cloth().springs;
-  out.resize(p.size());
-  for (std::size_t i = 0; i < m_diagonal.size(); ++i) {
-    const auto k = static_cast<Eigen::Index>(i);
-    particle(out, k).noalias() = m_diagonal[i] * particle(p, k);
-  }
-  for (Eigen::Index e = 0; e < springs.size(); ++e) {
-    const Mat3& c = m_coupling[static_cast<std::size_t>(e)];
-    const int i = springs.first[e], j = springs.second[e];
-    // C_e is symmetric: the definite Jacobian has no damping position term.
-    particle(out, i).noalias() -= c * particle(p, j);
-    particle(out, j).noalias() -= c * particle(p, i);
-  }
-}
-
 void ReducedNewtonSolver::jacobian_times(ConstVecRef r_x, const Eigen::VectorXd& w,
                                          Eigen::VectorXd& out) const {
   const SpringSet& springs = m_system.cloth().springs;
@@ -196,12 +239,6 @@ bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorX
   }
   // Preconditioned conjugate gradients (Shewchuk 1994, B2), stopping at |b - S z| <= tolerance
   // |b|. The iterates stay zero on fixed particles: b and the preconditioner are zero there.
-  const Eigen::Index n = b.size() / 3;
-  auto precondition = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
-    out.resize(in.size());
-    for (Eigen::Index i = 0; i < n; ++i)
-      particle(out, i).noalias() = m_diagonal_inverse[static_cast<std::size_t>(i)] * particle(in, i);
-  };
   const double b_norm = b.norm();
   if (b_norm == 0.0) {
     z_v.setZero(b.size());
@@ -209,7 +246,7 @@ bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorX
   }
   if (start == CgStart::previous && z_v.size() == b.size()) {
     m_system.constraints().zero_fixed(z_v);
-    multiply(z_v, m_product);
+    m_matrix.multiply(z_v, m_product);
     m_residual = b - m_product;
   } else {
     z_v.setZero(b.size());
@@ -220,7 +257,7 @@ bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorX
   m_direction = m_preconditioned;
   double rho = m_residual.dot(m_preconditioned);
   for (int k = 0; k < m_max_iterations; ++k) {
-    multiply(m_direction, m_product);
+    m_matrix.multiply(m_direction, m_product);
     const double alpha = rho / m_direction.dot(m_product);
     z_v += alpha * m_direction;
     m_residual -= alpha * m_product;

@@ -11,7 +11,8 @@
 //
 // S has the spring graph's 3x3 block sparsity, which never changes: a spring e = (i, j) with
 // Jacobian blocks K_e, D_e couples i and j through -C_e, C_e = gamma D_e + gamma^2 K_e, and adds
-// C_e to both diagonal blocks. CG multiplies by S block by block without assembling it; the
+// C_e to both diagonal blocks. CG keeps S by block rows (detail::BlockSparseMatrix) and
+// preconditions with its block diagonal or a multigrid V-cycle on the cloth grid; the
 // factorisation fills a compressed matrix whose pattern and symbolic analysis are built once.
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -20,12 +21,15 @@
 #include <vector>
 
 #include "core/cloth_system.hpp"
+#include "integrators/aggregation_multigrid.hpp"
+#include "integrators/block_sparse_matrix.hpp"
 
 namespace drape {
 
 /// How the reduced system S is solved.
 enum class ReducedSolve {
   conjugate_gradients,  ///< `pcg-reduced`: block-Jacobi preconditioned CG on S
+  multigrid_cg,         ///< `pcg-multigrid`: CG on S preconditioned by an aggregation V-cycle
   sparse_ldlt,          ///< `sparse-direct`: Eigen's SimplicialLDLT factorisation of S
 };
 
@@ -71,8 +75,9 @@ class ReducedNewtonSolver {
   void form_system();
   void build_pattern();
   void assemble_matrix();
-  /// out = S p, block by block.
-  void multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const;
+  void build_block_rows();
+  void assemble_block_rows();
+  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out);
   /// out = K r_x + D w with the unclamped columns of fixed particles (rows not zeroed).
   void jacobian_times(ConstVecRef r_x, const Eigen::VectorXd& w, Eigen::VectorXd& out) const;
   bool solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v, CgStart start);
@@ -88,7 +93,11 @@ class ReducedNewtonSolver {
   JacobianBlocks m_jacobian;
   std::vector<Mat3> m_coupling;  // C_e, zero when an end is fixed (S_ij = -C_e on free pairs)
   std::vector<Mat3> m_diagonal;  // S_ii (M on a fixed particle)
-  std::vector<Mat3> m_diagonal_inverse;  // block-Jacobi preconditioner of CG
+  // CG only: S by block rows, spring e's blocks (i, j) at m_spring_blocks[2e] and (j, i) at
+  // [2e + 1], and the multigrid levels of pcg-multigrid.
+  detail::BlockSparseMatrix m_matrix;
+  std::vector<int> m_spring_blocks;
+  detail::AggregationMultigrid m_multigrid;
   // sparse-direct only: S in a pattern built once, its blocks' slots, the symbolic analysis.
   Eigen::SparseMatrix<double> m_s;
   std::vector<BlockSlot> m_diagonal_slots, m_spring_slots;  // spring e: (i, j) at 2e, (j, i) at 2e+1

@@ -39,7 +39,7 @@ TEST(ImplicitEuler, TrajectoryIsFirstOrder) {
   auto reference_method = make_integrator(exact, *s);
   reference_method->reset(0.0, y0);
   const Eigen::VectorXd reference = testing::run_until(*reference_method, t_end);
-  for (const char* solver : {"pcg-reduced", "sparse-direct"}) {
+  for (const char* solver : {"pcg-reduced", "pcg-multigrid", "sparse-direct"}) {
     std::vector<double> dts, errors;
     for (int k = 0; k < 4; ++k) {
       dts.push_back(1e-4 / (1 << k));
@@ -54,7 +54,7 @@ TEST(ImplicitEuler, SettlesOnTheNewtonEquilibriumWithLargeSteps) {
   auto s = testing::pinned_test_cloth(0.02, 0.002);
   const Eigen::VectorXd expected = testing::newton_equilibrium(*s);
   const double limit = testing::leapfrog_stability_limit(*s, s->initial_state(0.0));
-  for (const char* solver : {"pcg-reduced", "sparse-direct"}) {
+  for (const char* solver : {"pcg-reduced", "pcg-multigrid", "sparse-direct"}) {
     ImplicitEuler method(*s, euler_options(5.0 * limit, solver));
     const Eigen::VectorXd x = testing::settle(method, *s);
     EXPECT_LT((x - expected).lpNorm<Eigen::Infinity>(), 1e-8) << solver;

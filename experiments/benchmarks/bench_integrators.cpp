@@ -56,6 +56,7 @@ const BenchCase cases[] = {
     {"symplectic-euler", "symplectic-euler", "", 1e-4},
     {"arkode-erk", "arkode-erk", "", 1e-4},
     {"implicit-euler/pcg-reduced", "implicit-euler", "pcg-reduced", 1.0 / 30.0},
+    {"implicit-euler/pcg-multigrid", "implicit-euler", "pcg-multigrid", 1.0 / 30.0},
     {"implicit-euler/sparse-direct", "implicit-euler", "sparse-direct", 1.0 / 30.0},
     {"arkode-dirk/pcg-reduced", "arkode-dirk", "pcg-reduced", 1.0 / 30.0},
     {"arkode-dirk/sparse-direct", "arkode-dirk", "sparse-direct", 1.0 / 30.0},
@@ -65,6 +66,8 @@ const BenchCase cases[] = {
     // (docs/integrators.md): the same methods with error-controlled steps up to 1/30 s.
     {"arkode-dirk/pcg-reduced/adaptive", "arkode-dirk", "pcg-reduced", 1.0 / 30.0, true},
     {"arkode-imex/pcg-reduced/adaptive", "arkode-imex", "pcg-reduced", 1.0 / 30.0, true},
+    {"arkode-dirk/pcg-multigrid/adaptive", "arkode-dirk", "pcg-multigrid", 1.0 / 30.0, true},
+    {"arkode-imex/pcg-multigrid/adaptive", "arkode-imex", "pcg-multigrid", 1.0 / 30.0, true},
 };
 
 const bool registered = [] {
