@@ -61,7 +61,7 @@ double Collision::energy(int i, const Vec3& x) const {
     const auto g = m_dummy->surface_gap(x);
     return g && g->gap < delta ? 0.5 * k * (delta - g->gap) * (delta - g->gap) : 0.0;
   }
-  const NearestObjectParticle hit = m_contacts.nearest(i, x);
+  const NearestObjectParticle hit = contact(i, x);
   return hit.index < 0 ? 0.0 : collision_energy(x - m_dummy->position(hit.index), k, delta);
 }
 
@@ -73,9 +73,19 @@ Mat3 Collision::jacobian(int i, const Vec3& x, bool definite) const {
     if (!g || g->gap >= delta) return Mat3::Zero();
     return -k * g->gradient * g->gradient.transpose();
   }
-  const NearestObjectParticle hit = m_contacts.nearest(i, x);
+  const NearestObjectParticle hit = contact(i, x);
   if (hit.index < 0) return Mat3::Zero();
   return collision_jacobian(x - m_dummy->position(hit.index), k, delta, definite);
+}
+
+void Collision::pair_contacts(ConstVecRef x) {
+  if (!m_dummy || m_params.model != CollisionModel::particle) return;
+  // Twice the threshold: a particle that starts a step outside delta but reaches it during the
+  // step is repelled too (the force is zero until then), unless it moves delta in one step.
+  const double radius = 2.0 * m_params.threshold;
+  m_pairing.resize(static_cast<std::size_t>(x.size() / 3));
+  for (std::size_t i = 0; i < m_pairing.size(); ++i)
+    m_pairing[i] = m_dummy->nearest_within(particle(x, static_cast<Eigen::Index>(i)), radius).index;
 }
 
 // A particle that has left its outside margin: a new margin, or the exact test.

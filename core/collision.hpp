@@ -67,6 +67,14 @@ namespace drape {
 /// surface (Dummy::surface_gap) and g < delta, energy k (delta - g)^2 / 2 and force
 /// k (delta - g) grad g; a particle inside moves radially onto the surface. Both remove the
 /// inward normal velocity of a corrected particle.
+///
+/// Contact pairing (the implicit integrators' fixed contact set, docs/integrators.md): after
+/// pair_contacts(x), the `particle` model repels cloth particle i from the object particle it
+/// was paired with, the nearest one within 2 delta of x_i, instead of the nearest one at every
+/// evaluation, until the next pair_contacts() or unpair_contacts(). The force is then piecewise
+/// smooth (a kink at d = delta, no jumps), so Newton's method on an implicit stage converges; at
+/// the positions x themselves it equals the unpaired force bit for bit. The surface model has no
+/// switches and ignores pairing.
 class Collision {
  public:
   /// `dummy` may be null: then every term is zero.
@@ -84,7 +92,17 @@ class Collision {
   /// velocity; returns whether it was inside.
   bool correct_penetration(int i, Vec3& x, Vec3& v) const;
 
+  /// Pairs every cloth particle with its nearest object particle within 2 delta of x (3N).
+  void pair_contacts(ConstVecRef x);
+  /// Back to the nearest object particle at every evaluation (the SPEC model).
+  void unpair_contacts() { m_pairing.clear(); }
+  /// Object particle paired with cloth particle i (-1: none); -1 for all when unpaired.
+  int paired(int i) const { return m_pairing.empty() ? -1 : m_pairing[static_cast<std::size_t>(i)]; }
+
  private:
+  /// The object particle that repels cloth particle i at x (its distance may reach delta when
+  /// paired): the paired one, or the nearest within delta.
+  NearestObjectParticle contact(int i, const Vec3& x) const;
   Vec3 surface_force(const Vec3& x) const;
   bool correct_penetration_off_margin(int i, Vec3& x, Vec3& v) const;
 
@@ -96,6 +114,7 @@ class Collision {
   // still within it needs no penetration test. Mutable like ContactFinder's lists.
   mutable Eigen::VectorXd m_outside_anchor;   // 3N
   mutable Eigen::VectorXd m_outside_margin2;  // N, squared; -1 before the first test
+  std::vector<int> m_pairing;  // N object particle indices while paired, empty otherwise
 };
 
 // The force evaluation's hot path, inline: it runs for every cloth particle at every evaluation.
@@ -125,10 +144,18 @@ inline bool Collision::correct_penetration(int i, Vec3& x, Vec3& v) const {
   return correct_penetration_off_margin(i, x, v);
 }
 
+inline NearestObjectParticle Collision::contact(int i, const Vec3& x) const {
+  if (m_pairing.empty()) return m_contacts.nearest(i, x);
+  const int o = m_pairing[static_cast<std::size_t>(i)];
+  if (o < 0) return {};
+  // The contact query's own distance formula: the same bits where the pair is the nearest.
+  return {o, std::sqrt(detail::distance_squared(m_dummy->positions().data() + 3 * o, x))};
+}
+
 inline Vec3 Collision::force(int i, const Vec3& x) const {
   if (!m_dummy) return Vec3::Zero();
   if (m_params.model == CollisionModel::surface) return surface_force(x);
-  const NearestObjectParticle hit = m_contacts.nearest(i, x);
+  const NearestObjectParticle hit = contact(i, x);
   if (hit.index < 0) return Vec3::Zero();
   return collision_force(x - m_dummy->position(hit.index), hit.distance,
                          m_dummy->normal(hit.index), m_params.stiffness, m_params.threshold);

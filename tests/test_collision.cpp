@@ -67,6 +67,83 @@ TEST(ParticleCollision, ForceUsesTheQueryDistanceWithTheSameBits) {
   EXPECT_GT(hits, 1000);
 }
 
+// Cloth particles scattered within 1 cm of the dress form's front.
+std::vector<Vec3> near_the_front(const Dummy& dummy, int count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> x(static_cast<std::size_t>(count));
+  for (Vec3& p : x) {
+    const double y = 1.05 + 0.2 * u(rng), theta = 1.5 * u(rng);
+    const Eigen::Vector2d axis = dummy.axis_at(y);
+    const double r = dummy.surface_radius(y, theta) + 0.01 * u(rng);
+    p = Vec3(axis.x() + r * std::sin(theta), y, axis.y() + r * std::cos(theta));
+  }
+  return x;
+}
+
+Eigen::VectorXd flattened(const std::vector<Vec3>& x) {
+  Eigen::VectorXd out(3 * static_cast<Eigen::Index>(x.size()));
+  for (std::size_t i = 0; i < x.size(); ++i) out.segment<3>(3 * static_cast<Eigen::Index>(i)) = x[i];
+  return out;
+}
+
+TEST(ContactPairing, PairsTheNearestParticleAndChangesNothingWhereItPaired) {
+  const auto dummy = std::make_shared<const Dummy>(
+      make_dummy(nlohmann::json{{"builtin", "dress-form"}}, "test", "dummy", "."));
+  const CollisionParams params{0.01, 1000.0, CollisionModel::particle};
+  const int n = 500;
+  const std::vector<Vec3> x = near_the_front(*dummy, n, 5);
+  Collision collision(dummy, params, n);
+  std::vector<Vec3> forces;
+  for (int i = 0; i < n; ++i) forces.push_back(collision.force(i, x[static_cast<std::size_t>(i)]));
+  collision.pair_contacts(flattened(x));
+  int in_contact = 0;
+  for (int i = 0; i < n; ++i) {
+    const Vec3& p = x[static_cast<std::size_t>(i)];
+    ASSERT_EQ(collision.paired(i), dummy->nearest_within(p, 2.0 * params.threshold).index);
+    ASSERT_EQ(collision.force(i, p), forces[static_cast<std::size_t>(i)]) << "particle " << i;
+    in_contact += !forces[static_cast<std::size_t>(i)].isZero();
+  }
+  EXPECT_GT(in_contact, 100);
+}
+
+TEST(ContactPairing, KeepsThePairWhenTheNearestParticleSwitches) {
+  const auto dummy = std::make_shared<const Dummy>(
+      make_dummy(nlohmann::json{{"builtin", "dress-form"}}, "test", "dummy", "."));
+  const CollisionParams params{0.01, 1000.0, CollisionModel::particle};
+  const int n = 500;
+  std::vector<Vec3> x = near_the_front(*dummy, n, 7);
+  Collision collision(dummy, params, n);
+  collision.pair_contacts(flattened(x));
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int switched = 0;
+  for (int i = 0; i < n; ++i) {
+    const int o = collision.paired(i);
+    if (o < 0) continue;
+    // A move of up to 5 mm, a few times a Newton iterate's in the drape at 2e-4 s.
+    const Vec3 moved = x[static_cast<std::size_t>(i)] + 0.005 * Vec3(u(rng), u(rng), u(rng));
+    const int nearest = dummy->nearest_within(moved, params.threshold).index;
+    // Still the paired particle's spring, continuous across the switch.
+    ASSERT_EQ(collision.force(i, moved),
+              collision_force(moved - dummy->position(o), dummy->normal(o), params.stiffness,
+                              params.threshold));
+    if (nearest >= 0 && nearest != o) ++switched;
+  }
+  EXPECT_GT(switched, 20) << "the moves cross switches of the nearest object particle";
+  collision.unpair_contacts();
+  for (int i = 0; i < n; ++i) {
+    const Vec3& p = x[static_cast<std::size_t>(i)];
+    const NearestObjectParticle hit = dummy->nearest_within(p, params.threshold);
+    ASSERT_EQ(collision.paired(i), -1);
+    ASSERT_EQ(collision.force(i, p), hit.index < 0 ? Vec3::Zero()
+                                                   : collision_force(p - dummy->position(hit.index),
+                                                                     dummy->normal(hit.index),
+                                                                     params.stiffness,
+                                                                     params.threshold));
+  }
+}
+
 TEST(DummyParticlesWithin, MatchesTheBruteForceScan) {
   const Dummy dummy(cylinder_sections(0.1, 0.0, 0.0, 1.0, 0.5, 21, 24));
   std::mt19937 rng(5);
