@@ -48,9 +48,17 @@ Collision::Collision(std::shared_ptr<const Dummy> dummy, const CollisionParams& 
       m_outside_anchor(Eigen::VectorXd::Zero(m_dummy ? 3 * num_particles : 0)),
       m_outside_margin2(Eigen::VectorXd::Constant(m_dummy ? num_particles : 0, -1.0)) {}
 
-Vec3 Collision::surface_force(const Vec3& x) const {
+std::optional<SurfaceGap> Collision::surface_contact(int i, const Vec3& x) const {
+  if (m_planes.empty()) return m_dummy->surface_gap(x);
+  const TangentPlane& plane = m_planes[static_cast<std::size_t>(i)];
+  if (!plane.active) return std::nullopt;
+  // Written from the anchor, so that at the anchor itself the gap is the surface's exactly.
+  return SurfaceGap{plane.gap + plane.gradient.dot(x - plane.anchor), plane.gradient};
+}
+
+Vec3 Collision::surface_force(int i, const Vec3& x) const {
   const double delta = m_params.threshold, k = m_params.stiffness;
-  const auto g = m_dummy->surface_gap(x);
+  const auto g = surface_contact(i, x);
   return g && g->gap < delta ? Vec3(k * (delta - g->gap) * g->gradient) : Vec3::Zero();
 }
 
@@ -58,7 +66,7 @@ double Collision::energy(int i, const Vec3& x) const {
   if (!m_dummy) return 0.0;
   const double delta = m_params.threshold, k = m_params.stiffness;
   if (m_params.model == CollisionModel::surface) {
-    const auto g = m_dummy->surface_gap(x);
+    const auto g = surface_contact(i, x);
     return g && g->gap < delta ? 0.5 * k * (delta - g->gap) * (delta - g->gap) : 0.0;
   }
   const NearestObjectParticle hit = contact(i, x);
@@ -69,7 +77,7 @@ Mat3 Collision::jacobian(int i, const Vec3& x, bool definite) const {
   if (!m_dummy) return Mat3::Zero();
   const double delta = m_params.threshold, k = m_params.stiffness;
   if (m_params.model == CollisionModel::surface) {
-    const auto g = m_dummy->surface_gap(x);
+    const auto g = surface_contact(i, x);
     if (!g || g->gap >= delta) return Mat3::Zero();
     return -k * g->gradient * g->gradient.transpose();
   }
@@ -79,13 +87,23 @@ Mat3 Collision::jacobian(int i, const Vec3& x, bool definite) const {
 }
 
 void Collision::pair_contacts(ConstVecRef x) {
-  if (!m_dummy || m_params.model != CollisionModel::particle) return;
+  if (!m_dummy) return;
   // Twice the threshold: a particle that starts a step outside delta but reaches it during the
   // step is repelled too (the force is zero until then), unless it moves delta in one step.
   const double radius = 2.0 * m_params.threshold;
-  m_pairing.resize(static_cast<std::size_t>(x.size() / 3));
-  for (std::size_t i = 0; i < m_pairing.size(); ++i)
-    m_pairing[i] = m_dummy->nearest_within(particle(x, static_cast<Eigen::Index>(i)), radius).index;
+  const auto n = static_cast<std::size_t>(x.size() / 3);
+  if (m_params.model == CollisionModel::particle) {
+    m_pairing.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      m_pairing[i] = m_dummy->nearest_within(particle(x, static_cast<Eigen::Index>(i)), radius).index;
+    return;
+  }
+  m_planes.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 xi = particle(x, static_cast<Eigen::Index>(i));
+    const auto g = m_dummy->surface_gap(xi);
+    m_planes[i] = g && g->gap < radius ? TangentPlane{xi, g->gap, g->gradient, true} : TangentPlane{};
+  }
 }
 
 // A particle that has left its outside margin: a new margin, or the exact test.

@@ -6,6 +6,7 @@
 // stays within `skin` of its anchor, every object particle within delta of it is on the list
 // (triangle inequality), so scanning the list gives exactly the grid's answer, ties included.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/dummy.hpp"
@@ -69,12 +70,14 @@ namespace drape {
 /// inward normal velocity of a corrected particle.
 ///
 /// Contact pairing (the implicit integrators' fixed contact set, docs/integrators.md): after
-/// pair_contacts(x), the `particle` model repels cloth particle i from the object particle it
-/// was paired with, the nearest one within 2 delta of x_i, instead of the nearest one at every
-/// evaluation, until the next pair_contacts() or unpair_contacts(). The force is then piecewise
-/// smooth (a kink at d = delta, no jumps), so Newton's method on an implicit stage converges; at
-/// the positions x themselves it equals the unpaired force bit for bit. The surface model has no
-/// switches and ignores pairing.
+/// pair_contacts(x), until the next pair_contacts() or unpair_contacts(), each cloth particle
+/// keeps the contact it had at x_i. `particle`: it is repelled from the object particle nearest
+/// to x_i within 2 delta, not from the nearest one at each evaluation. `surface`: the gap is
+/// the tangent plane's at x_i, g(x_i) + grad g(x_i) . (x - x_i), for a particle with g(x_i) <
+/// 2 delta (the interpolated surface's gradient jumps across section heights and angle bins).
+/// Either force is then piecewise smooth (a kink at the threshold, no jumps), so Newton's method
+/// on an implicit stage can converge; at the positions x themselves it equals the unpaired force
+/// bit for bit.
 class Collision {
  public:
   /// `dummy` may be null: then every term is zero.
@@ -92,18 +95,31 @@ class Collision {
   /// velocity; returns whether it was inside.
   bool correct_penetration(int i, Vec3& x, Vec3& v) const;
 
-  /// Pairs every cloth particle with its nearest object particle within 2 delta of x (3N).
+  /// Fixes every cloth particle's contact at its position in x (3N), for either model.
   void pair_contacts(ConstVecRef x);
-  /// Back to the nearest object particle at every evaluation (the SPEC model).
-  void unpair_contacts() { m_pairing.clear(); }
-  /// Object particle paired with cloth particle i (-1: none); -1 for all when unpaired.
+  /// Back to the contact at every evaluation (the SPEC model).
+  void unpair_contacts() {
+    m_pairing.clear();
+    m_planes.clear();
+  }
+  /// `particle`: the object particle paired with cloth particle i (-1: none, or unpaired).
   int paired(int i) const { return m_pairing.empty() ? -1 : m_pairing[static_cast<std::size_t>(i)]; }
 
  private:
+  /// A surface contact fixed at pair_contacts(): the gap and its gradient at `anchor`.
+  struct TangentPlane {
+    Vec3 anchor = Vec3::Zero();
+    double gap = 0.0;
+    Vec3 gradient = Vec3::Zero();
+    bool active = false;  ///< false: no contact this step
+  };
+
   /// The object particle that repels cloth particle i at x (its distance may reach delta when
   /// paired): the paired one, or the nearest within delta.
   NearestObjectParticle contact(int i, const Vec3& x) const;
-  Vec3 surface_force(const Vec3& x) const;
+  /// The surface gap of cloth particle i at x: the paired tangent plane's, or the surface's.
+  std::optional<SurfaceGap> surface_contact(int i, const Vec3& x) const;
+  Vec3 surface_force(int i, const Vec3& x) const;
   bool correct_penetration_off_margin(int i, Vec3& x, Vec3& v) const;
 
   std::shared_ptr<const Dummy> m_dummy;
@@ -114,7 +130,9 @@ class Collision {
   // still within it needs no penetration test. Mutable like ContactFinder's lists.
   mutable Eigen::VectorXd m_outside_anchor;   // 3N
   mutable Eigen::VectorXd m_outside_margin2;  // N, squared; -1 before the first test
-  std::vector<int> m_pairing;  // N object particle indices while paired, empty otherwise
+  // While paired, N entries for the model in use; both empty otherwise.
+  std::vector<int> m_pairing;         // particle: object particle indices
+  std::vector<TangentPlane> m_planes; // surface
 };
 
 // The force evaluation's hot path, inline: it runs for every cloth particle at every evaluation.
@@ -154,7 +172,7 @@ inline NearestObjectParticle Collision::contact(int i, const Vec3& x) const {
 
 inline Vec3 Collision::force(int i, const Vec3& x) const {
   if (!m_dummy) return Vec3::Zero();
-  if (m_params.model == CollisionModel::surface) return surface_force(x);
+  if (m_params.model == CollisionModel::surface) return surface_force(i, x);
   const NearestObjectParticle hit = contact(i, x);
   if (hit.index < 0) return Vec3::Zero();
   return collision_force(x - m_dummy->position(hit.index), hit.distance,

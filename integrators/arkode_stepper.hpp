@@ -22,10 +22,11 @@ namespace drape {
 /// preconditioner (reduced_newton_solver.hpp). Fixed steps or error-controlled steps.
 ///
 /// arkode-dirk fixes the contact set over each step (Collision::pair_contacts): each cloth
-/// particle is repelled by the object particle nearest to it at the step start, paired again
-/// after every accepted step. The nearest object particle switching between Newton iterates
-/// made the collision force jump and Newton cycle (docs/integrators.md). arkode-erk and
-/// arkode-imex (collision explicit) evaluate the unpaired model.
+/// particle keeps the contact of the step start (its nearest object particle, or the surface's
+/// tangent plane), paired again after every accepted step. A switch of the nearest object
+/// particle (or of the surface's piece) between Newton iterates made the collision force jump
+/// and Newton cycle (docs/integrators.md). arkode-erk and arkode-imex (collision explicit)
+/// evaluate the unpaired model.
 class ArkodeStepper final : public Integrator {
  public:
   /// `options` must have passed validate_integrator_choice().

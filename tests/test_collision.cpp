@@ -87,61 +87,93 @@ Eigen::VectorXd flattened(const std::vector<Vec3>& x) {
   return out;
 }
 
-TEST(ContactPairing, PairsTheNearestParticleAndChangesNothingWhereItPaired) {
-  const auto dummy = std::make_shared<const Dummy>(
+std::shared_ptr<const Dummy> dress_form() {
+  return std::make_shared<const Dummy>(
       make_dummy(nlohmann::json{{"builtin", "dress-form"}}, "test", "dummy", "."));
-  const CollisionParams params{0.01, 1000.0, CollisionModel::particle};
-  const int n = 500;
-  const std::vector<Vec3> x = near_the_front(*dummy, n, 5);
-  Collision collision(dummy, params, n);
+}
+
+// 500 cloth particles near the dress form's front, their collision and their unpaired forces.
+struct NearTheFront {
+  NearTheFront(CollisionModel model, unsigned seed)
+      : dummy(dress_form()),
+        params{0.01, 1000.0, model},
+        x(near_the_front(*dummy, n, seed)),
+        collision(dummy, params, n) {
+    for (int i = 0; i < n; ++i) forces.push_back(collision.force(i, at(i)));
+  }
+  const Vec3& at(int i) const { return x[static_cast<std::size_t>(i)]; }
+  /// Particle i moved by up to 5 mm, a few times a Newton iterate's move in the drape at 2e-4 s.
+  Vec3 moved(int i) { return at(i) + 0.005 * Vec3(u(rng), u(rng), u(rng)); }
+
+  static constexpr int n = 500;
+  std::shared_ptr<const Dummy> dummy;
+  CollisionParams params;
+  std::vector<Vec3> x;
+  Collision collision;
   std::vector<Vec3> forces;
-  for (int i = 0; i < n; ++i) forces.push_back(collision.force(i, x[static_cast<std::size_t>(i)]));
-  collision.pair_contacts(flattened(x));
+  std::mt19937 rng{1};
+  std::uniform_real_distribution<double> u{-1.0, 1.0};
+};
+
+TEST(ContactPairing, PairsTheNearestParticleAndChangesNothingWhereItPaired) {
+  NearTheFront f(CollisionModel::particle, 5);
+  f.collision.pair_contacts(flattened(f.x));
   int in_contact = 0;
-  for (int i = 0; i < n; ++i) {
-    const Vec3& p = x[static_cast<std::size_t>(i)];
-    ASSERT_EQ(collision.paired(i), dummy->nearest_within(p, 2.0 * params.threshold).index);
-    ASSERT_EQ(collision.force(i, p), forces[static_cast<std::size_t>(i)]) << "particle " << i;
-    in_contact += !forces[static_cast<std::size_t>(i)].isZero();
+  for (int i = 0; i < f.n; ++i) {
+    ASSERT_EQ(f.collision.paired(i), f.dummy->nearest_within(f.at(i), 2.0 * f.params.threshold).index);
+    ASSERT_EQ(f.collision.force(i, f.at(i)), f.forces[static_cast<std::size_t>(i)]) << "particle " << i;
+    in_contact += !f.forces[static_cast<std::size_t>(i)].isZero();
   }
   EXPECT_GT(in_contact, 100);
 }
 
 TEST(ContactPairing, KeepsThePairWhenTheNearestParticleSwitches) {
-  const auto dummy = std::make_shared<const Dummy>(
-      make_dummy(nlohmann::json{{"builtin", "dress-form"}}, "test", "dummy", "."));
-  const CollisionParams params{0.01, 1000.0, CollisionModel::particle};
-  const int n = 500;
-  std::vector<Vec3> x = near_the_front(*dummy, n, 7);
-  Collision collision(dummy, params, n);
-  collision.pair_contacts(flattened(x));
-  std::mt19937 rng(8);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  NearTheFront f(CollisionModel::particle, 7);
+  const Dummy& dummy = *f.dummy;
+  const double k = f.params.stiffness, delta = f.params.threshold;
+  f.collision.pair_contacts(flattened(f.x));
   int switched = 0;
-  for (int i = 0; i < n; ++i) {
-    const int o = collision.paired(i);
+  for (int i = 0; i < f.n; ++i) {
+    const int o = f.collision.paired(i);
     if (o < 0) continue;
-    // A move of up to 5 mm, a few times a Newton iterate's in the drape at 2e-4 s.
-    const Vec3 moved = x[static_cast<std::size_t>(i)] + 0.005 * Vec3(u(rng), u(rng), u(rng));
-    const int nearest = dummy->nearest_within(moved, params.threshold).index;
+    const Vec3 moved = f.moved(i);
+    const int nearest = dummy.nearest_within(moved, delta).index;
     // Still the paired particle's spring, continuous across the switch.
-    ASSERT_EQ(collision.force(i, moved),
-              collision_force(moved - dummy->position(o), dummy->normal(o), params.stiffness,
-                              params.threshold));
+    ASSERT_EQ(f.collision.force(i, moved),
+              collision_force(moved - dummy.position(o), dummy.normal(o), k, delta));
     if (nearest >= 0 && nearest != o) ++switched;
   }
   EXPECT_GT(switched, 20) << "the moves cross switches of the nearest object particle";
-  collision.unpair_contacts();
-  for (int i = 0; i < n; ++i) {
-    const Vec3& p = x[static_cast<std::size_t>(i)];
-    const NearestObjectParticle hit = dummy->nearest_within(p, params.threshold);
-    ASSERT_EQ(collision.paired(i), -1);
-    ASSERT_EQ(collision.force(i, p), hit.index < 0 ? Vec3::Zero()
-                                                   : collision_force(p - dummy->position(hit.index),
-                                                                     dummy->normal(hit.index),
-                                                                     params.stiffness,
-                                                                     params.threshold));
+  f.collision.unpair_contacts();
+  for (int i = 0; i < f.n; ++i) {
+    ASSERT_EQ(f.collision.paired(i), -1);
+    ASSERT_EQ(f.collision.force(i, f.at(i)), f.forces[static_cast<std::size_t>(i)]);
   }
+}
+
+// The surface model's paired gap is the tangent plane at the pairing position: the same force
+// there, and across the interpolated surface's section heights and angle bins, where the
+// surface's gradient jumps, a force that follows the plane continuously.
+TEST(ContactPairing, SurfaceModelKeepsTheTangentPlaneOfThePairingPosition) {
+  NearTheFront f(CollisionModel::surface, 9);
+  const double k = f.params.stiffness, delta = f.params.threshold;
+  f.collision.pair_contacts(flattened(f.x));
+  int jumps = 0;
+  for (int i = 0; i < f.n; ++i) {
+    const Vec3& p = f.at(i);
+    ASSERT_EQ(f.collision.paired(i), -1) << "no object particles in the surface model";
+    ASSERT_EQ(f.collision.force(i, p), f.forces[static_cast<std::size_t>(i)]) << "particle " << i;
+    const auto g = f.dummy->surface_gap(p);
+    if (!g || g->gap >= delta) continue;
+    const Vec3 moved = f.moved(i);
+    const double plane_gap = g->gap + g->gradient.dot(moved - p);
+    const Vec3 expected =
+        plane_gap < delta ? Vec3(k * (delta - plane_gap) * g->gradient) : Vec3::Zero();
+    ASSERT_EQ(f.collision.force(i, moved), expected);
+    const auto g_moved = f.dummy->surface_gap(moved);
+    if (g_moved && (g_moved->gradient - g->gradient).norm() > 0.01) ++jumps;
+  }
+  EXPECT_GT(jumps, 20) << "the moves cross edges of the interpolated surface";
 }
 
 TEST(DummyParticlesWithin, MatchesTheBruteForceScan) {
