@@ -127,7 +127,10 @@ TEST(ContactPairing, PairsTheNearestParticleAndChangesNothingWhereItPaired) {
   EXPECT_GT(in_contact, 100);
 }
 
-TEST(ContactPairing, KeepsThePairWhenTheNearestParticleSwitches) {
+// Paired, the point repulsion is linearised at the pairing position: a spring along the fixed
+// direction n from the paired object particle, continuous where the nearest object particle
+// switches.
+TEST(ContactPairing, KeepsTheLinearisedPairWhenTheNearestParticleSwitches) {
   NearTheFront f(CollisionModel::particle, 7);
   const Dummy& dummy = *f.dummy;
   const double k = f.params.stiffness, delta = f.params.threshold;
@@ -137,10 +140,11 @@ TEST(ContactPairing, KeepsThePairWhenTheNearestParticleSwitches) {
     const int o = f.collision.paired(i);
     if (o < 0) continue;
     const Vec3 moved = f.moved(i);
+    const Vec3 d0 = f.at(i) - dummy.position(o);
+    const double gap = d0.norm() + (d0 / d0.norm()).dot(moved - f.at(i));
+    const Vec3 expected = gap < delta ? Vec3(k * (delta - gap) * d0 / d0.norm()) : Vec3::Zero();
+    ASSERT_LT((f.collision.force(i, moved) - expected).norm(), 1e-12 * k * delta);
     const int nearest = dummy.nearest_within(moved, delta).index;
-    // Still the paired particle's spring, continuous across the switch.
-    ASSERT_EQ(f.collision.force(i, moved),
-              collision_force(moved - dummy.position(o), dummy.normal(o), k, delta));
     if (nearest >= 0 && nearest != o) ++switched;
   }
   EXPECT_GT(switched, 20) << "the moves cross switches of the nearest object particle";
@@ -148,6 +152,27 @@ TEST(ContactPairing, KeepsThePairWhenTheNearestParticleSwitches) {
   for (int i = 0; i < f.n; ++i) {
     ASSERT_EQ(f.collision.paired(i), -1);
     ASSERT_EQ(f.collision.force(i, f.at(i)), f.forces[static_cast<std::size_t>(i)]);
+  }
+}
+
+// A corrected penetration puts a cloth particle exactly on an object particle, where the point
+// repulsion's direction is undefined (the SPEC force takes the object particle's normal): paired,
+// the force there is the same, and nearby it keeps that direction instead of turning around.
+TEST(ContactPairing, ParticleOnItsObjectParticlePushesAlongTheNormal) {
+  const auto dummy = dress_form();
+  const CollisionParams params{0.01, 1000.0, CollisionModel::particle};
+  const int o = dummy->size() / 2;
+  const Vec3 on = dummy->position(o), normal = dummy->normal(o);
+  Collision collision(dummy, params, 1);
+  const Vec3 unpaired = collision.force(0, on);
+  collision.pair_contacts(on);
+  EXPECT_EQ(collision.force(0, on), unpaired);
+  EXPECT_EQ(unpaired, params.stiffness * params.threshold * normal);
+  const Vec3 step = 1e-4 * Vec3(1.0, -2.0, 0.5);
+  for (const Vec3& x : {Vec3(on + step), Vec3(on - step)}) {
+    const double gap = normal.dot(x - on);
+    EXPECT_LT((collision.force(0, x) - params.stiffness * (params.threshold - gap) * normal).norm(),
+              1e-12);
   }
 }
 
