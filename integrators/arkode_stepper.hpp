@@ -22,8 +22,8 @@ namespace drape {
 /// preconditioner (reduced_newton_solver.hpp). Fixed steps or error-controlled steps.
 ///
 /// arkode-dirk fixes the contact set over each step (Collision::pair_contacts): each cloth
-/// particle keeps the contact of the step start (its nearest object particle, or the surface's
-/// tangent plane), paired again after every accepted step. A switch of the nearest object
+/// particle keeps the contact of the step start (its nearest object particle, or the surface),
+/// linearised there, paired again after every accepted step. A switch of the nearest object
 /// particle (or of the surface's piece) between Newton iterates made the collision force jump
 /// and Newton cycle (docs/integrators.md). arkode-erk and arkode-imex (collision explicit)
 /// evaluate the unpaired model.

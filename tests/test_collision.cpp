@@ -201,6 +201,32 @@ TEST(ContactPairing, SurfaceModelKeepsTheTangentPlaneOfThePairingPosition) {
   EXPECT_GT(jumps, 20) << "the moves cross edges of the interpolated surface";
 }
 
+// The paired force is minus the paired energy's gradient, the paired Jacobian the force's
+// derivative (central differences), for both models, away from the threshold's kink.
+TEST(ContactPairing, ForceAndJacobianAreTheEnergyDerivatives) {
+  for (const CollisionModel model : {CollisionModel::particle, CollisionModel::surface}) {
+    NearTheFront f(model, 12);
+    f.collision.pair_contacts(flattened(f.x));
+    const double h = 1e-7, delta = f.params.threshold;
+    int checked = 0;
+    for (int i = 0; i < f.n; ++i) {
+      const Vec3 x = f.moved(i);
+      const Vec3 force = f.collision.force(i, x);
+      if (force.isZero() || f.collision.energy(i, x) < 1e-6 * delta * delta) continue;
+      const Mat3 jacobian = f.collision.jacobian(i, x, false);
+      for (int a = 0; a < 3; ++a) {
+        const Vec3 e = h * Vec3::Unit(a);
+        const double de = f.collision.energy(i, x + e) - f.collision.energy(i, x - e);
+        ASSERT_NEAR(-de / (2 * h), force[a], 1e-6 * force.norm()) << "particle " << i;
+        const Vec3 df = f.collision.force(i, x + e) - f.collision.force(i, x - e);
+        ASSERT_LT((df / (2 * h) - jacobian.col(a)).norm(), 1e-6 * jacobian.norm() + 1e-9);
+      }
+      ++checked;
+    }
+    EXPECT_GT(checked, 50);
+  }
+}
+
 TEST(DummyParticlesWithin, MatchesTheBruteForceScan) {
   const Dummy dummy(cylinder_sections(0.1, 0.0, 0.0, 1.0, 0.5, 21, 24));
   std::mt19937 rng(5);
