@@ -57,6 +57,9 @@ class ClothSystem {
   double particle_mass() const { return m_cloth.params.particle_mass; }
   ConstraintSet& constraints() { return m_constraints; }
   const ConstraintSet& constraints() const { return m_constraints; }
+  /// The collision term, whose contact pairing the implicit integrators set (Collision).
+  Collision& collision() { return m_collision; }
+  const Collision& collision() const { return m_collision; }
 
   /// The grid at rest, at zero velocity, projected onto the constraints at time t.
   Eigen::VectorXd initial_state(double t) const;

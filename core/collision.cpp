@@ -57,6 +57,10 @@ Vec3 Collision::surface_force(const Vec3& x) const {
 double Collision::energy(int i, const Vec3& x) const {
   if (!m_dummy) return 0.0;
   const double delta = m_params.threshold, k = m_params.stiffness;
+  if (!m_planes.empty()) {
+    const std::optional<double> g = plane_gap(i, x);
+    return g && *g < delta ? 0.5 * k * (delta - *g) * (delta - *g) : 0.0;
+  }
   if (m_params.model == CollisionModel::surface) {
     const auto g = m_dummy->surface_gap(x);
     return g && g->gap < delta ? 0.5 * k * (delta - g->gap) * (delta - g->gap) : 0.0;
@@ -68,6 +72,12 @@ double Collision::energy(int i, const Vec3& x) const {
 Mat3 Collision::jacobian(int i, const Vec3& x, bool definite) const {
   if (!m_dummy) return Mat3::Zero();
   const double delta = m_params.threshold, k = m_params.stiffness;
+  if (!m_planes.empty()) {
+    const std::optional<double> g = plane_gap(i, x);
+    if (!g || *g >= delta) return Mat3::Zero();
+    const Vec3& n = m_planes[static_cast<std::size_t>(i)].gradient;
+    return -k * n * n.transpose();
+  }
   if (m_params.model == CollisionModel::surface) {
     const auto g = m_dummy->surface_gap(x);
     if (!g || g->gap >= delta) return Mat3::Zero();
@@ -76,6 +86,37 @@ Mat3 Collision::jacobian(int i, const Vec3& x, bool definite) const {
   const NearestObjectParticle hit = m_contacts.nearest(i, x);
   if (hit.index < 0) return Mat3::Zero();
   return collision_jacobian(x - m_dummy->position(hit.index), k, delta, definite);
+}
+
+void Collision::pair_contacts(ConstVecRef x) {
+  if (!m_dummy) return;
+  m_planes.resize(static_cast<std::size_t>(x.size() / 3));
+  for (std::size_t i = 0; i < m_planes.size(); ++i) {
+    const Vec3 xi = particle(x, static_cast<Eigen::Index>(i));
+    m_planes[i] = m_params.model == CollisionModel::particle ? particle_plane(xi) : surface_plane(xi);
+  }
+}
+
+// Both planes reach twice the threshold: a particle that starts a step outside delta but
+// reaches it during the step is repelled too (the force is zero until then), unless it moves
+// delta in one step.
+Collision::ContactPlane Collision::particle_plane(const Vec3& x) const {
+  const NearestObjectParticle hit = m_dummy->nearest_within(x, 2.0 * m_params.threshold);
+  if (hit.index < 0) return {};
+  const Vec3 d = x - m_dummy->position(hit.index);
+  // On the object particle (a corrected penetration puts it there) the SPEC force pushes along
+  // the object particle's normal, as if from a gap of 0.
+  if (hit.distance < degenerate_length) {
+    const Vec3 normal = m_dummy->normal(hit.index);
+    return {x, 0.0, normal, normal, 1.0, hit.index, true};
+  }
+  return {x, hit.distance, d / hit.distance, d, hit.distance, hit.index, true};
+}
+
+Collision::ContactPlane Collision::surface_plane(const Vec3& x) const {
+  const auto g = m_dummy->surface_gap(x);
+  if (!g || g->gap >= 2.0 * m_params.threshold) return {};
+  return {x, g->gap, g->gradient, g->gradient, 1.0, -1, true};
 }
 
 // A particle that has left its outside margin: a new margin, or the exact test.

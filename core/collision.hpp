@@ -6,6 +6,7 @@
 // stays within `skin` of its anchor, every object particle within delta of it is on the list
 // (triangle inequality), so scanning the list gives exactly the grid's answer, ties included.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/dummy.hpp"
@@ -67,6 +68,18 @@ namespace drape {
 /// surface (Dummy::surface_gap) and g < delta, energy k (delta - g)^2 / 2 and force
 /// k (delta - g) grad g; a particle inside moves radially onto the surface. Both remove the
 /// inward normal velocity of a corrected particle.
+///
+/// Contact pairing (the implicit integrators' contact set of a step, docs/integrators.md):
+/// after pair_contacts(x), until the next pair_contacts() or unpair_contacts(), each cloth
+/// particle i keeps the contact it had at x_i, linearised there: with g the contact's gap (the
+/// distance |x - p_o| to the object particle o nearest to x_i, or the surface gap) and n its
+/// gradient at x_i, the gap is the tangent plane's g(x_i) + n . (x - x_i), the force
+/// k (delta - g) n, the Jacobian -k n n^T, for a particle with g(x_i) < 2 delta. The force no
+/// longer jumps where the nearest object particle switches, where the surface's gradient jumps
+/// (section heights, angle bins) or through an object particle (the point repulsion turns its
+/// direction around there, and a corrected penetration puts a particle exactly on it), so
+/// Newton's method on an implicit stage sees a piecewise linear force (a kink at the threshold).
+/// At the positions x themselves it equals the unpaired force bit for bit.
 class Collision {
  public:
   /// `dummy` may be null: then every term is zero.
@@ -84,7 +97,35 @@ class Collision {
   /// velocity; returns whether it was inside.
   bool correct_penetration(int i, Vec3& x, Vec3& v) const;
 
+  /// Fixes and linearises every cloth particle's contact at its position in x (3N).
+  void pair_contacts(ConstVecRef x);
+  /// Back to the contact at every evaluation (the SPEC model).
+  void unpair_contacts() { m_planes.clear(); }
+  /// `particle` model: the object particle paired with cloth particle i (-1: none, unpaired, or
+  /// the surface model).
+  int paired(int i) const {
+    return m_planes.empty() ? -1 : m_planes[static_cast<std::size_t>(i)].object;
+  }
+
  private:
+  /// A contact linearised at pair_contacts(): the gap at `anchor` and its gradient. The force
+  /// is k (delta - gap) push / push_length, push / push_length = gradient, written as the
+  /// unpaired force is computed so that the two agree bit for bit at the anchor.
+  struct ContactPlane {
+    Vec3 anchor = Vec3::Zero();
+    double gap = 0.0;
+    Vec3 gradient = Vec3::Zero();
+    Vec3 push = Vec3::Zero();
+    double push_length = 1.0;
+    int object = -1;      ///< `particle`: the object particle
+    bool active = false;  ///< false: no contact over this step
+  };
+
+  /// The plane's gap at x, or nothing without a contact.
+  std::optional<double> plane_gap(int i, const Vec3& x) const;
+  Vec3 paired_force(int i, const Vec3& x) const;
+  ContactPlane particle_plane(const Vec3& x) const;
+  ContactPlane surface_plane(const Vec3& x) const;
   Vec3 surface_force(const Vec3& x) const;
   bool correct_penetration_off_margin(int i, Vec3& x, Vec3& v) const;
 
@@ -96,6 +137,7 @@ class Collision {
   // still within it needs no penetration test. Mutable like ContactFinder's lists.
   mutable Eigen::VectorXd m_outside_anchor;   // 3N
   mutable Eigen::VectorXd m_outside_margin2;  // N, squared; -1 before the first test
+  std::vector<ContactPlane> m_planes;  // N while paired, empty otherwise
 };
 
 // The force evaluation's hot path, inline: it runs for every cloth particle at every evaluation.
@@ -125,8 +167,24 @@ inline bool Collision::correct_penetration(int i, Vec3& x, Vec3& v) const {
   return correct_penetration_off_margin(i, x, v);
 }
 
+inline std::optional<double> Collision::plane_gap(int i, const Vec3& x) const {
+  const ContactPlane& c = m_planes[static_cast<std::size_t>(i)];
+  if (!c.active) return std::nullopt;
+  // Written from the anchor, so that at the anchor itself the gap is the contact's exactly.
+  return c.gap + c.gradient.dot(x - c.anchor);
+}
+
+inline Vec3 Collision::paired_force(int i, const Vec3& x) const {
+  const std::optional<double> g = plane_gap(i, x);
+  const double delta = m_params.threshold;
+  if (!g || *g >= delta) return Vec3::Zero();
+  const ContactPlane& c = m_planes[static_cast<std::size_t>(i)];
+  return (m_params.stiffness * (delta - *g) / c.push_length) * c.push;
+}
+
 inline Vec3 Collision::force(int i, const Vec3& x) const {
   if (!m_dummy) return Vec3::Zero();
+  if (!m_planes.empty()) return paired_force(i, x);
   if (m_params.model == CollisionModel::surface) return surface_force(x);
   const NearestObjectParticle hit = m_contacts.nearest(i, x);
   if (hit.index < 0) return Vec3::Zero();

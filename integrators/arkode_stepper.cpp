@@ -48,6 +48,10 @@ ArkodeStepper::ArkodeStepper(ClothSystem& system, ArkodeKind kind,
   m_y_vector = detail::wrap_vector(m_y, m_context);
 }
 
+ArkodeStepper::~ArkodeStepper() {
+  if (pairs_contacts()) m_system.collision().unpair_contacts();
+}
+
 ForceSplit ArkodeStepper::explicit_split() const {
   return m_kind == ArkodeKind::imex ? ForceSplit::non_springs : ForceSplit::all;
 }
@@ -61,6 +65,7 @@ void ArkodeStepper::reset(double t, const Eigen::VectorXd& y) {
   Integrator::reset(t, y);  // same size: copies into the buffer that m_y_vector views
   // The constraints may have changed: K and D have other zero rows now.
   if (m_reduced) m_reduced->invalidate();
+  if (pairs_contacts()) m_system.collision().pair_contacts(positions());
   if (!m_arkode)
     create(t);
   else
@@ -213,6 +218,9 @@ int ArkodeStepper::postprocess_step(sunrealtype t, N_Vector y, void* data) {
   VecMap state = view(y);
   const Eigen::Index n3 = state.size() / 2;
   self.m_corrections += self.m_system.project(t, state.head(n3), state.tail(n3));
+  // ARKODE evaluates the right-hand side at the new state only after this function, so the
+  // next step's first stage and the interpolant already see the new contact set.
+  if (self.pairs_contacts()) self.m_system.collision().pair_contacts(state.head(n3));
   return 0;
 }
 

@@ -20,10 +20,19 @@ namespace drape {
 /// f_E = [0; M^-1 (gravity + air damping + collision)]. Implicit stages are solved by Newton's
 /// method with GMRES, the analytic Jacobian-times-vector and the reduced 3N system as the
 /// preconditioner (reduced_newton_solver.hpp). Fixed steps or error-controlled steps.
+///
+/// arkode-dirk fixes the contact set over each step (Collision::pair_contacts): each cloth
+/// particle keeps the contact of the step start (its nearest object particle, or the surface),
+/// linearised there, paired again after every accepted step. A switch of the nearest object
+/// particle (or of the surface's piece) between Newton iterates made the collision force jump
+/// and Newton cycle (docs/integrators.md). arkode-erk and arkode-imex (collision explicit)
+/// evaluate the unpaired model.
 class ArkodeStepper final : public Integrator {
  public:
   /// `options` must have passed validate_integrator_choice().
   ArkodeStepper(ClothSystem& system, ArkodeKind kind, const IntegratorOptions& options);
+  /// Leaves the system's collision unpaired, as every other integrator expects it.
+  ~ArkodeStepper() override;
   void reset(double t, const Eigen::VectorXd& y) override;
   double step(double t_stop) override;
 
@@ -41,6 +50,8 @@ class ArkodeStepper final : public Integrator {
   void accumulate_counters();
   ForceSplit explicit_split() const;
   ForceSplit implicit_split() const;
+  /// Whether the collision force is inside Newton's stage equations (arkode-dirk).
+  bool pairs_contacts() const { return m_kind == ArkodeKind::diagonally_implicit; }
 
   static int explicit_rhs(sunrealtype t, N_Vector y, N_Vector y_dot, void* self);
   static int implicit_rhs(sunrealtype t, N_Vector y, N_Vector y_dot, void* self);

@@ -2,6 +2,8 @@
 // equilibrium, large stable steps, constraints, resets at events and failures.
 #include <gtest/gtest.h>
 
+#include "core/dummy_sources.hpp"
+#include "core/scene.hpp"
 #include "integrators/arkode_stepper.hpp"
 #include "integrators/registry.hpp"
 #include "test_support.hpp"
@@ -167,6 +169,74 @@ TEST(ArkodeStepper, CountersAddUp) {
   EXPECT_GT(c.jacobian_setups, 0);
   EXPECT_GT(c.rhs_evals, 0);
   EXPECT_EQ(c.resets, 0) << "the start is not a restart";
+}
+
+// The cloth of experiments/scenes/drape_dress_form.json, pinned, at its start: 7 particles
+// already within the collision threshold of the chest.
+std::unique_ptr<ClothSystem> drape_scene_cloth(CollisionModel model = CollisionModel::particle) {
+  Scene scene =
+      load_scene(std::string(DRAPE_SOURCE_DIR) + "/experiments/scenes/drape_dress_form.json");
+  scene.forces.collision.model = model;
+  auto dummy = std::make_shared<const Dummy>(
+      make_dummy(scene.dummy, scene.file, "dummy", scene.base_dir));
+  auto s = std::make_unique<ClothSystem>(build_cloth(scene.cloth), dummy, scene.forces);
+  for (const GridPoint& pin : scene.pins) {
+    const int i = s->cloth().index(pin.row, pin.col);
+    s->constraints().fix_at(i, s->cloth().rest_positions.segment<3>(3 * i));
+  }
+  return s;
+}
+
+// These runs stopped with ARK_CONV_FAILURE before t = 2 ms of the drape scene: Newton's
+// iterates went back and forth across the switch of a particle's nearest object particle, or
+// across an edge of the interpolated surface (surface model). With the contact set fixed over
+// each step (Collision::pair_contacts) they run through, and after every step the pairs are
+// the nearest object particles of the new state.
+TEST(ArkodeStepper, DirkRunsThroughContactWithTheContactSetOfTheStepStart) {
+  struct Case { const char* table; CollisionModel model; };
+  for (const Case c : {Case{"ARKODE_SDIRK_2_1_2", CollisionModel::particle},
+                       Case{"ARKODE_KVAERNO_4_2_3", CollisionModel::particle},
+                       Case{"ARKODE_ARK324L2SA_DIRK_4_2_3", CollisionModel::surface}}) {
+    SCOPED_TRACE(c.table);
+    auto s = drape_scene_cloth(c.model);
+    IntegratorOptions o = arkode_options("arkode-dirk", c.table, 2e-4);
+    o.rtol = IntegratorOptions{}.rtol;
+    o.atol = IntegratorOptions{}.atol;
+    auto method = make_integrator(o, *s);
+    const Eigen::VectorXd y0 = s->initial_state(0.0);
+    method->reset(0.0, y0);
+    const double radius = 2.0 * s->params().collision.threshold;
+    const Eigen::Index n3 = 3 * s->num_particles();
+    int in_contact = 0;
+    while (method->time() < 0.004 - 1e-12) {
+      method->step(0.004);
+      const auto x = method->state().head(n3);
+      for (int i = 0; i < s->num_particles(); ++i) {
+        const Vec3 xi = particle(x, i);
+        if (c.model == CollisionModel::particle) {
+          ASSERT_EQ(s->collision().paired(i), s->dummy()->nearest_within(xi, radius).index);
+        }
+        in_contact += s->collision().force(i, xi).norm() > 0.0;
+      }
+    }
+    EXPECT_EQ(method->counters().steps, 20);
+    EXPECT_GT(in_contact, 20 * 2) << "particles in contact at every step";
+    for (const int i : s->constraints().fixed_particles())
+      EXPECT_EQ(particle(method->state().head(n3), i), particle(y0.head(n3), i));
+    method.reset();
+    EXPECT_EQ(s->collision().paired(0), -1) << "the stepper unpairs when it goes";
+  }
+}
+
+// arkode-erk and arkode-imex (collision explicit) evaluate the SPEC model: no pairs.
+TEST(ArkodeStepper, ExplicitCollisionIsNeverPaired) {
+  for (const char* name : {"arkode-erk", "arkode-imex"}) {
+    auto s = drape_scene_cloth();
+    auto method = make_integrator(arkode_options(name, "", 2e-4), *s);
+    method->reset(0.0, s->initial_state(0.0));
+    method->step(1.0);
+    for (int i = 0; i < s->num_particles(); ++i) ASSERT_EQ(s->collision().paired(i), -1) << name;
+  }
 }
 
 TEST(ArkodeStepper, SolverFailureIsAnIntegratorFailure) {

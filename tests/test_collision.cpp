@@ -67,6 +67,166 @@ TEST(ParticleCollision, ForceUsesTheQueryDistanceWithTheSameBits) {
   EXPECT_GT(hits, 1000);
 }
 
+// Cloth particles scattered within 1 cm of the dress form's front.
+std::vector<Vec3> near_the_front(const Dummy& dummy, int count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> x(static_cast<std::size_t>(count));
+  for (Vec3& p : x) {
+    const double y = 1.05 + 0.2 * u(rng), theta = 1.5 * u(rng);
+    const Eigen::Vector2d axis = dummy.axis_at(y);
+    const double r = dummy.surface_radius(y, theta) + 0.01 * u(rng);
+    p = Vec3(axis.x() + r * std::sin(theta), y, axis.y() + r * std::cos(theta));
+  }
+  return x;
+}
+
+Eigen::VectorXd flattened(const std::vector<Vec3>& x) {
+  Eigen::VectorXd out(3 * static_cast<Eigen::Index>(x.size()));
+  for (std::size_t i = 0; i < x.size(); ++i) out.segment<3>(3 * static_cast<Eigen::Index>(i)) = x[i];
+  return out;
+}
+
+std::shared_ptr<const Dummy> dress_form() {
+  return std::make_shared<const Dummy>(
+      make_dummy(nlohmann::json{{"builtin", "dress-form"}}, "test", "dummy", "."));
+}
+
+// 500 cloth particles near the dress form's front, their collision and their unpaired forces.
+struct NearTheFront {
+  NearTheFront(CollisionModel model, unsigned seed)
+      : dummy(dress_form()),
+        params{0.01, 1000.0, model},
+        x(near_the_front(*dummy, n, seed)),
+        collision(dummy, params, n) {
+    for (int i = 0; i < n; ++i) forces.push_back(collision.force(i, at(i)));
+  }
+  const Vec3& at(int i) const { return x[static_cast<std::size_t>(i)]; }
+  /// Particle i moved by up to 5 mm, a few times a Newton iterate's move in the drape at 2e-4 s.
+  Vec3 moved(int i) { return at(i) + 0.005 * Vec3(u(rng), u(rng), u(rng)); }
+
+  static constexpr int n = 500;
+  std::shared_ptr<const Dummy> dummy;
+  CollisionParams params;
+  std::vector<Vec3> x;
+  Collision collision;
+  std::vector<Vec3> forces;
+  std::mt19937 rng{1};
+  std::uniform_real_distribution<double> u{-1.0, 1.0};
+};
+
+TEST(ContactPairing, PairsTheNearestParticleAndChangesNothingWhereItPaired) {
+  NearTheFront f(CollisionModel::particle, 5);
+  f.collision.pair_contacts(flattened(f.x));
+  int in_contact = 0;
+  for (int i = 0; i < f.n; ++i) {
+    ASSERT_EQ(f.collision.paired(i), f.dummy->nearest_within(f.at(i), 2.0 * f.params.threshold).index);
+    ASSERT_EQ(f.collision.force(i, f.at(i)), f.forces[static_cast<std::size_t>(i)]) << "particle " << i;
+    in_contact += !f.forces[static_cast<std::size_t>(i)].isZero();
+  }
+  EXPECT_GT(in_contact, 100);
+}
+
+// Paired, the point repulsion is linearised at the pairing position: a spring along the fixed
+// direction n from the paired object particle, continuous where the nearest object particle
+// switches.
+TEST(ContactPairing, KeepsTheLinearisedPairWhenTheNearestParticleSwitches) {
+  NearTheFront f(CollisionModel::particle, 7);
+  const Dummy& dummy = *f.dummy;
+  const double k = f.params.stiffness, delta = f.params.threshold;
+  f.collision.pair_contacts(flattened(f.x));
+  int switched = 0;
+  for (int i = 0; i < f.n; ++i) {
+    const int o = f.collision.paired(i);
+    if (o < 0) continue;
+    const Vec3 moved = f.moved(i);
+    const Vec3 d0 = f.at(i) - dummy.position(o);
+    const double gap = d0.norm() + (d0 / d0.norm()).dot(moved - f.at(i));
+    const Vec3 expected = gap < delta ? Vec3(k * (delta - gap) * d0 / d0.norm()) : Vec3::Zero();
+    ASSERT_LT((f.collision.force(i, moved) - expected).norm(), 1e-12 * k * delta);
+    const int nearest = dummy.nearest_within(moved, delta).index;
+    if (nearest >= 0 && nearest != o) ++switched;
+  }
+  EXPECT_GT(switched, 20) << "the moves cross switches of the nearest object particle";
+  f.collision.unpair_contacts();
+  for (int i = 0; i < f.n; ++i) {
+    ASSERT_EQ(f.collision.paired(i), -1);
+    ASSERT_EQ(f.collision.force(i, f.at(i)), f.forces[static_cast<std::size_t>(i)]);
+  }
+}
+
+// A corrected penetration puts a cloth particle exactly on an object particle, where the point
+// repulsion's direction is undefined (the SPEC force takes the object particle's normal): paired,
+// the force there is the same, and nearby it keeps that direction instead of turning around.
+TEST(ContactPairing, ParticleOnItsObjectParticlePushesAlongTheNormal) {
+  const auto dummy = dress_form();
+  const CollisionParams params{0.01, 1000.0, CollisionModel::particle};
+  const int o = dummy->size() / 2;
+  const Vec3 on = dummy->position(o), normal = dummy->normal(o);
+  Collision collision(dummy, params, 1);
+  const Vec3 unpaired = collision.force(0, on);
+  collision.pair_contacts(on);
+  EXPECT_EQ(collision.force(0, on), unpaired);
+  EXPECT_EQ(unpaired, params.stiffness * params.threshold * normal);
+  const Vec3 step = 1e-4 * Vec3(1.0, -2.0, 0.5);
+  for (const Vec3& x : {Vec3(on + step), Vec3(on - step)}) {
+    const double gap = normal.dot(x - on);
+    EXPECT_LT((collision.force(0, x) - params.stiffness * (params.threshold - gap) * normal).norm(),
+              1e-12);
+  }
+}
+
+// The surface model's paired gap is the tangent plane at the pairing position: the same force
+// there, and across the interpolated surface's section heights and angle bins, where the
+// surface's gradient jumps, a force that follows the plane continuously.
+TEST(ContactPairing, SurfaceModelKeepsTheTangentPlaneOfThePairingPosition) {
+  NearTheFront f(CollisionModel::surface, 9);
+  const double k = f.params.stiffness, delta = f.params.threshold;
+  f.collision.pair_contacts(flattened(f.x));
+  int jumps = 0;
+  for (int i = 0; i < f.n; ++i) {
+    const Vec3& p = f.at(i);
+    ASSERT_EQ(f.collision.paired(i), -1) << "no object particles in the surface model";
+    ASSERT_EQ(f.collision.force(i, p), f.forces[static_cast<std::size_t>(i)]) << "particle " << i;
+    const auto g = f.dummy->surface_gap(p);
+    if (!g || g->gap >= delta) continue;
+    const Vec3 moved = f.moved(i);
+    const double plane_gap = g->gap + g->gradient.dot(moved - p);
+    const Vec3 expected =
+        plane_gap < delta ? Vec3(k * (delta - plane_gap) * g->gradient) : Vec3::Zero();
+    ASSERT_EQ(f.collision.force(i, moved), expected);
+    const auto g_moved = f.dummy->surface_gap(moved);
+    if (g_moved && (g_moved->gradient - g->gradient).norm() > 0.01) ++jumps;
+  }
+  EXPECT_GT(jumps, 20) << "the moves cross edges of the interpolated surface";
+}
+
+// The paired force is minus the paired energy's gradient, the paired Jacobian the force's
+// derivative (central differences), for both models, away from the threshold's kink.
+TEST(ContactPairing, ForceAndJacobianAreTheEnergyDerivatives) {
+  for (const CollisionModel model : {CollisionModel::particle, CollisionModel::surface}) {
+    NearTheFront f(model, 12);
+    f.collision.pair_contacts(flattened(f.x));
+    const double h = 1e-7, delta = f.params.threshold;
+    int checked = 0;
+    for (int i = 0; i < f.n; ++i) {
+      const Vec3 x = f.moved(i);
+      const Vec3 force = f.collision.force(i, x);
+      if (force.isZero() || f.collision.energy(i, x) < 1e-6 * delta * delta) continue;
+      const Mat3 jacobian = f.collision.jacobian(i, x, false);
+      for (int a = 0; a < 3; ++a) {
+        const Vec3 e = h * Vec3::Unit(a);
+        const double de = f.collision.energy(i, x + e) - f.collision.energy(i, x - e);
+        ASSERT_NEAR(-de / (2 * h), force[a], 1e-6 * force.norm()) << "particle " << i;
+        const Vec3 df = f.collision.force(i, x + e) - f.collision.force(i, x - e);
+        ASSERT_LT((df / (2 * h) - jacobian.col(a)).norm(), 1e-6 * jacobian.norm() + 1e-9);
+      }
+      ++checked;
+    }
+    EXPECT_GT(checked, 50);
+  }
+}
+
 TEST(DummyParticlesWithin, MatchesTheBruteForceScan) {
   const Dummy dummy(cylinder_sections(0.1, 0.0, 0.0, 1.0, 0.5, 21, 24));
   std::mt19937 rng(5);
