@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <utility>
 
 #include "core/forces.hpp"
 #include "core/grid_spring_forces.hpp"
@@ -56,6 +57,20 @@ TEST(GridSpringForces, EqualTheSpringFormulasSummedSpringBySpring) {
     EXPECT_LT((actual - expected).lpNorm<Eigen::Infinity>(),
               1e-14 * expected.lpNorm<Eigen::Infinity>())
         << "c = " << c;
+  }
+}
+
+TEST(GridSpringForces, ThinGridsHaveOnlyTheSpringsThatFit) {
+  // Stencils longer than the grid have no springs; runs shorter than a packet are all tail.
+  for (const auto& [rows, cols] : {std::pair{1, 1}, {1, 6}, {6, 1}, {2, 2}, {3, 2}, {2, 5}}) {
+    const Cloth cloth = build_cloth(testing::small_cloth(rows, cols));
+    const Eigen::VectorXd x = testing::jitter(1.1 * cloth.rest_positions, 0.004, 5);
+    const Eigen::VectorXd v = testing::jitter(Eigen::VectorXd::Zero(x.size()), 0.5, 6);
+    GridSpringForces grid(cloth);
+    const Eigen::VectorXd expected = reference_spring_forces(cloth, x, v, 0.05);
+    EXPECT_LE((interleaved(grid.evaluate(x, v, 0.05)) - expected).lpNorm<Eigen::Infinity>(),
+              1e-14 * expected.lpNorm<Eigen::Infinity>())
+        << rows << " x " << cols;
   }
 }
 
