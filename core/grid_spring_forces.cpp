@@ -53,10 +53,8 @@ GridSpringForces::GridSpringForces(const Cloth& cloth)
 }
 
 const Eigen::ArrayX3d& GridSpringForces::evaluate(ConstVecRef x, ConstVecRef v, double c) {
-  using Points = Eigen::Map<const Eigen::Matrix3Xd>;
-  const Eigen::Index n = m_x.rows();
-  m_x = Points(x.data(), 3, n).transpose();
-  if (c != 0.0) m_v = Points(v.data(), 3, n).transpose();
+  to_components(x, m_x);
+  if (c != 0.0) to_components(v, m_v);
   m_force.setZero();
   const spring_kernel::Arrays arrays = kernel_arrays(m_x, m_v, m_force, m_row_force);
   for (const spring_kernel::Stencil& s : m_stencils) m_add(s, c, arrays);

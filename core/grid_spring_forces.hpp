@@ -12,6 +12,13 @@
 
 namespace drape {
 
+/// Interleaved 3N values (x0 y0 z0 x1 ...) into N x 3 components, the kernel's layout (no
+/// allocation when `out` has the size already).
+inline void to_components(ConstVecRef interleaved, Eigen::ArrayX3d& out) {
+  out = Eigen::Map<const Eigen::Matrix3Xd>(interleaved.data(), 3, interleaved.size() / 3)
+            .transpose();
+}
+
 /// The kernel's description of a stencil's springs on a rows x cols grid.
 spring_kernel::Stencil kernel_stencil(const SpringStencil& stencil, int rows, int cols);
 /// The kernel's view of N x 3 arrays (`row_force`: cols x 3).

@@ -86,8 +86,9 @@ TEST(SpringKernel, SseAndAvxBuildsGiveTheSameBits) {
   if (!spring_kernel::has_avx()) GTEST_SKIP() << "this processor has no AVX";
   ShakenCloth s;
   const Eigen::Index n = s.cloth.size();
-  Eigen::ArrayX3d x = Eigen::Map<const Eigen::Matrix3Xd>(s.x.data(), 3, n).transpose().array();
-  Eigen::ArrayX3d v = Eigen::Map<const Eigen::Matrix3Xd>(s.v.data(), 3, n).transpose().array();
+  Eigen::ArrayX3d x, v;
+  to_components(s.x, x);
+  to_components(s.v, v);
   Eigen::ArrayX3d force_sse(n, 3), force_avx(n, 3), row(s.cloth.params.cols, 3);
   for (const SpringStencil& stencil : s.cloth.stencils) {
     const spring_kernel::Stencil k =

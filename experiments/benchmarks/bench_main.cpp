@@ -62,7 +62,8 @@ void BM_SpringKernel(benchmark::State& state) {
   auto system = draped_cloth(static_cast<int>(state.range(0)), y);
   const Cloth& cloth = system->cloth();
   const Eigen::Index n = cloth.size();
-  const Eigen::ArrayX3d x = Eigen::Map<const Eigen::Matrix3Xd>(y.data(), 3, n).transpose().array();
+  Eigen::ArrayX3d x;
+  to_components(y.head(3 * n), x);
   const Eigen::ArrayX3d v = Eigen::ArrayX3d::Zero(n, 3);
   Eigen::ArrayX3d force(n, 3), row(cloth.params.cols, 3);
   const spring_kernel::Arrays arrays = kernel_arrays(x, v, force, row);
