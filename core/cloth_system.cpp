@@ -1,6 +1,7 @@
 #include "core/cloth_system.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <vector>
 
 #include "core/forces.hpp"
@@ -39,8 +40,8 @@ void ClothSystem::evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceS
   const double m = particle_mass();
   const Vec3 weight = m * m_params.gravity;
   const bool with_collision = m_dummy && with_rest;
-  const Eigen::ArrayX3d* springs =
-      with_springs ? &m_spring_forces.evaluate(x, v, m_cloth.params.damping_spring) : nullptr;
+  std::optional<ConstComponents> springs;
+  if (with_springs) springs.emplace(m_spring_forces.evaluate(x, v, m_cloth.params.damping_spring));
 
   // One pass over particles gathers the terms and divides by the mass (a separate pass over 3N
   // values would cost as much again), adding in registers and storing each particle once.

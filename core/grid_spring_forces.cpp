@@ -34,31 +34,47 @@ spring_kernel::Stencil kernel_stencil(const SpringStencil& stencil, int rows, in
   return k;
 }
 
-spring_kernel::Arrays kernel_arrays(const Eigen::ArrayX3d& x, const Eigen::ArrayX3d& v,
-                                    Eigen::ArrayX3d& force, Eigen::ArrayX3d& row_force) {
-  return {{&x(0, 0), &x(0, 1), &x(0, 2)},
-          {&v(0, 0), &v(0, 1), &v(0, 2)},
+spring_kernel::Arrays kernel_arrays(ConstComponents x, ConstComponents v, Components force,
+                                    Components row_force) {
+  return {{x.col(0).data(), x.col(1).data(), x.col(2).data()},
+          {v.col(0).data(), v.col(1).data(), v.col(2).data()},
           {&force(0, 0), &force(0, 1), &force(0, 2)},
           {&row_force(0, 0), &row_force(0, 1), &row_force(0, 2)}};
 }
 
+namespace {
+
+// Column stride of the buffer: N rounded up to a page (512 doubles), plus 256 bytes, so column
+// k starts 256 k bytes into its page (k < 9 < 16 stay distinct).
+Eigen::Index staggered_stride(Eigen::Index n) {
+  constexpr Eigen::Index page = 512, shift = 32;
+  return (n + page - 1) / page * page + shift;
+}
+
+}  // namespace
+
 GridSpringForces::GridSpringForces(const Cloth& cloth)
-    : m_x(cloth.size(), 3),
-      m_v(cloth.size(), 3),
-      m_force(cloth.size(), 3),
+    : m_particles(cloth.size()),
+      m_buffer(staggered_stride(cloth.size()), 9),
       m_row_force(cloth.params.cols, 3),
       m_add(spring_kernel::has_avx() ? spring_kernel::add_avx : spring_kernel::add_sse2) {
   for (const SpringStencil& s : cloth.stencils)
     m_stencils.push_back(kernel_stencil(s, cloth.params.rows, cloth.params.cols));
 }
 
-const Eigen::ArrayX3d& GridSpringForces::evaluate(ConstVecRef x, ConstVecRef v, double c) {
-  to_components(x, m_x);
-  if (c != 0.0) to_components(v, m_v);
-  m_force.setZero();
-  const spring_kernel::Arrays arrays = kernel_arrays(m_x, m_v, m_force, m_row_force);
+Components GridSpringForces::columns(Eigen::Index first) {
+  return Eigen::Map<Eigen::ArrayX3d, 0, Eigen::OuterStride<>>(
+      &m_buffer(0, first), m_particles, 3, Eigen::OuterStride<>(m_buffer.rows()));
+}
+
+ConstComponents GridSpringForces::evaluate(ConstVecRef x, ConstVecRef v, double c) {
+  Components xs = columns(0), vs = columns(3), force = columns(6);
+  to_components(x, xs);
+  if (c != 0.0) to_components(v, vs);
+  force.setZero();
+  const spring_kernel::Arrays arrays = kernel_arrays(xs, vs, force, m_row_force);
   for (const spring_kernel::Stencil& s : m_stencils) m_add(s, c, arrays);
-  return m_force;
+  return force;
 }
 
 }  // namespace drape

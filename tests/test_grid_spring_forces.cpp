@@ -28,7 +28,7 @@ Eigen::VectorXd reference_spring_forces(const Cloth& cloth, const Eigen::VectorX
   return f;
 }
 
-Eigen::VectorXd interleaved(const Eigen::ArrayX3d& soa) {
+Eigen::VectorXd interleaved(ConstComponents soa) {
   Eigen::Matrix3Xd points = soa.matrix().transpose();
   return Eigen::Map<Eigen::VectorXd>(points.data(), points.size());
 }
@@ -86,7 +86,7 @@ TEST(SpringKernel, SseAndAvxBuildsGiveTheSameBits) {
   if (!spring_kernel::has_avx()) GTEST_SKIP() << "this processor has no AVX";
   ShakenCloth s;
   const Eigen::Index n = s.cloth.size();
-  Eigen::ArrayX3d x, v;
+  Eigen::ArrayX3d x(n, 3), v(n, 3);
   to_components(s.x, x);
   to_components(s.v, v);
   Eigen::ArrayX3d force_sse(n, 3), force_avx(n, 3), row(s.cloth.params.cols, 3);

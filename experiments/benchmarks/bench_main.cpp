@@ -63,7 +63,7 @@ void BM_SpringKernel(benchmark::State& state) {
   auto system = draped_cloth(static_cast<int>(state.range(0)), y);
   const Cloth& cloth = system->cloth();
   const Eigen::Index n = cloth.size();
-  Eigen::ArrayX3d x;
+  Eigen::ArrayX3d x(n, 3);
   to_components(y.head(3 * n), x);
   const Eigen::ArrayX3d v = Eigen::ArrayX3d::Zero(n, 3);
   Eigen::ArrayX3d force(n, 3), row(cloth.params.cols, 3);
