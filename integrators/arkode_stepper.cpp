@@ -4,6 +4,7 @@
 #include <sunlinsol/sunlinsol_spgmr.h>
 
 #include <cassert>
+#include <sstream>
 #include <stdexcept>
 
 namespace drape {
@@ -140,9 +141,17 @@ void ArkodeStepper::record_error(int, const char*, const char*, char* message, v
 }
 
 double ArkodeStepper::step(double t_stop) {
+  const double start = m_t;
+  if (m_options.adaptive)
+    evolve(t_stop);
+  else
+    cover_fixed(fixed_step_end(m_options.dt, m_t, t_stop), m_options.max_step_halvings);
+  m_last_step = m_t - start;
+  return m_t;
+}
+
+void ArkodeStepper::evolve(double target) {
   void* mem = m_arkode.get();
-  const double target =
-      m_options.adaptive ? t_stop : fixed_step_end(m_options.dt, m_t, t_stop);
   check_sundials(ARKStepSetStopTime(mem, target), "ARKStepSetStopTime");
   m_corrections = 0;
   m_arkode_message.clear();
@@ -150,7 +159,7 @@ double ArkodeStepper::step(double t_stop) {
   const int flag = ARKStepEvolve(mem, target, m_y_vector.get(), &reached, ARK_ONE_STEP);
   accumulate_counters();  // a failed step's work counts too
   check_sundials(flag, "ARKStepEvolve", ARKStepGetReturnFlagName, m_arkode_message);
-  m_last_step = reached - m_t;
+  const double step = reached - m_t;
   m_t = reached;
   // At the stop time ARKODE returns its interpolant, its solution to round-off: snap the fixed
   // particles again so that they are exact.
@@ -158,8 +167,53 @@ double ArkodeStepper::step(double t_stop) {
   // A penetration correction jumps the state: ARKODE's history (error estimates, stage
   // predictor) no longer describes it. The fixed-particle snap in postprocess_step moves the
   // state only by the step's own truncation error and needs no restart.
-  if (m_corrections > 0) restart(m_last_step);
-  return m_t;
+  if (m_corrections > 0) restart(step);
+}
+
+namespace {
+
+// Failures of a step's implicit solve, which a shorter step can avoid (its predictor is closer
+// to the stage solutions and its matrix closer to M).
+bool solve_failed(const std::string& flag) {
+  return flag == "ARK_CONV_FAILURE" || flag == "ARK_LSETUP_FAIL" || flag == "ARK_LSOLVE_FAIL";
+}
+
+}  // namespace
+
+// A fixed step in fixed-step mode stops at its first failed solve (ARKODE does not shrink it):
+// here the interval is then taken again from its start as two half steps, each of which may be
+// halved again, as an adaptive code would shrink a failed step. Halvings are counted and
+// reported (summary.json); the interval's end and every later step keep the fixed step.
+void ArkodeStepper::cover_fixed(double t_end, int halvings_left) {
+  const double t_start = m_t;
+  const Eigen::VectorXd start = m_y;
+  try {
+    evolve(t_end);
+    return;
+  } catch (const IntegratorFailure& failure) {
+    if (!solve_failed(failure.flag()) || m_options.max_step_halvings == 0) throw;
+    if (halvings_left == 0) {
+      std::ostringstream exhausted;
+      exhausted << failure.what() << " (the step was halved " << m_options.max_step_halvings
+                << " times, to " << t_end - t_start << " s)";
+      throw IntegratorFailure(failure.flag(), exhausted.str());
+    }
+  }
+  ++m_counters.step_halvings;
+  const double middle = t_start + 0.5 * (t_end - t_start);
+  m_t = t_start;
+  m_y = start;  // same size: the buffer that m_y_vector views
+  restart_fixed(middle - t_start);
+  cover_fixed(middle, halvings_left - 1);
+  restart_fixed(t_end - middle);
+  cover_fixed(t_end, halvings_left - 1);
+  restart_fixed(m_options.dt);
+}
+
+void ArkodeStepper::restart_fixed(double step) {
+  if (pairs_contacts()) m_system.collision().pair_contacts(positions());
+  check_sundials(ARKStepSetFixedStep(m_arkode.get(), step), "ARKStepSetFixedStep");
+  restart(step);
 }
 
 ArkodeStepper::ArkodeCounts ArkodeStepper::read_counts() const {

@@ -46,6 +46,12 @@ class ArkodeStepper final : public Integrator {
   void create(double t);
   void set_up_newton();
   void restart(double initial_step);
+  /// One ARKODE step towards `target`, projected; throws IntegratorFailure.
+  void evolve(double target);
+  /// Fixed steps up to t_end, a failed one halved up to `halvings_left` times.
+  void cover_fixed(double t_end, int halvings_left);
+  /// Restarts from the current state with fixed step `step`.
+  void restart_fixed(double step);
   ArkodeCounts read_counts() const;
   void accumulate_counters();
   ForceSplit explicit_split() const;

@@ -13,7 +13,8 @@ nlohmann::json IntegratorCounters::to_json() const {
           {"jacobian_setups", jacobian_setups},
           {"error_test_failures", error_test_failures},
           {"convergence_failures", convergence_failures},
-          {"resets", resets}};
+          {"resets", resets},
+          {"step_halvings", step_halvings}};
 }
 
 void Integrator::reset(double t, const Eigen::VectorXd& y) {

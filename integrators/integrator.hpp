@@ -21,6 +21,7 @@ struct IntegratorCounters {
   long error_test_failures = 0;   ///< steps rejected by the error test
   long convergence_failures = 0;  ///< nonlinear or linear solver failures
   long resets = 0;                ///< restarts at events
+  long step_halvings = 0;         ///< fixed steps retried as two halves after a solver failure
 
   nlohmann::json to_json() const;
 };

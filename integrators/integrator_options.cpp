@@ -24,6 +24,9 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
   o.linear_solver = in.string("linear_solver", o.linear_solver);
   o.max_newton_iters = in.integer("max_newton_iters", o.max_newton_iters);
   if (o.max_newton_iters < 1) throw in.error("max_newton_iters", "must be at least 1");
+  o.max_step_halvings = in.integer("max_step_halvings", o.max_step_halvings);
+  if (o.max_step_halvings < 0 || o.max_step_halvings > 30)
+    throw in.error("max_step_halvings", "must be between 0 and 30");
   o.linear_tolerance = in.positive(
       "linear_tolerance", in.number("linear_tolerance", default_linear_tolerance(o.name)));
   o.max_linear_iters = in.integer("max_linear_iters", o.max_linear_iters);
@@ -61,6 +64,7 @@ nlohmann::json to_json(const IntegratorOptions& o) {
           {"max_dt", o.max_dt},
           {"linear_solver", o.linear_solver},
           {"max_newton_iters", o.max_newton_iters},
+          {"max_step_halvings", o.max_step_halvings},
           {"linear_tolerance", linear_tolerance_of(o)},
           {"max_linear_iters", o.max_linear_iters},
           {"max_steps", o.max_steps}};

@@ -19,6 +19,9 @@ struct IntegratorOptions {
   /// linear_solver_of().
   std::string linear_solver;
   int max_newton_iters = 10;      ///< Newton iterations per stage before a failure
+  /// Fixed-step ARKODE runs: how many times a step whose solve fails may be halved (0: the
+  /// first failure ends the run).
+  int max_step_halvings = 10;
   /// Relative residual of the iterative linear solvers; 0 = default_linear_tolerance(name).
   double linear_tolerance = 0.0;
   int max_linear_iters = 200;     ///< Krylov / CG iterations per solve

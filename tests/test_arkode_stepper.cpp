@@ -242,7 +242,8 @@ TEST(ArkodeStepper, ExplicitCollisionIsNeverPaired) {
 TEST(ArkodeStepper, SolverFailureIsAnIntegratorFailure) {
   auto s = testing::pinned_test_cloth();
   IntegratorOptions o = arkode_options("arkode-dirk", "", 0.05);
-  o.max_newton_iters = 1;  // a fixed-step run cannot retry: the first hard stage fails
+  o.max_newton_iters = 1;
+  o.max_step_halvings = 0;  // the first hard stage ends the run
   auto method = make_integrator(o, *s);
   method->reset(0.0, testing::shaken_state(*s));
   try {
@@ -252,6 +253,52 @@ TEST(ArkodeStepper, SolverFailureIsAnIntegratorFailure) {
     EXPECT_EQ(failure.flag(), "ARK_CONV_FAILURE");
     // ARKODE's own explanation travels in the message instead of being printed.
     EXPECT_NE(std::string(failure.what()).find("convergence test failed"), std::string::npos)
+        << failure.what();
+  }
+}
+
+// A fixed step whose Newton solve fails is taken again as two halves (recursively): the run
+// goes on, on the same time grid, and ends near a fine-step solution.
+TEST(ArkodeStepper, FailedFixedStepIsTakenAgainAsTwoHalves) {
+  auto s = testing::pinned_test_cloth();
+  const Eigen::VectorXd y0 = testing::shaken_state(*s);
+  IntegratorOptions o = arkode_options("arkode-dirk", "ARKODE_SDIRK_2_1_2", 0.05);
+  o.rtol = 1e-4;  // the defaults: Newton stops at a fraction of the local error
+  o.atol = 1e-7;
+  o.max_newton_iters = 2;
+  auto method = make_integrator(o, *s);
+  method->reset(0.0, y0);
+  for (int k = 1; k <= 4; ++k) {
+    EXPECT_DOUBLE_EQ(method->step(1.0), 0.05 * k);
+    EXPECT_DOUBLE_EQ(method->last_step(), 0.05);
+  }
+  const IntegratorCounters& c = method->counters();
+  EXPECT_GT(c.step_halvings, 0);
+  // Every halving follows a failed attempt and puts two steps in the place of one.
+  EXPECT_GE(c.steps, 4 + c.step_halvings);
+  EXPECT_GE(c.attempts - c.steps, c.step_halvings);
+  // As accurate as the same step solved to convergence (10 Newton iterations, no halving).
+  o.max_newton_iters = 10;
+  const Eigen::VectorXd whole_steps = run(*s, o, y0, 0.2);
+  const Eigen::VectorXd fine =
+      run(*s, arkode_options("arkode-dirk", "ARKODE_SDIRK_2_1_2", 1e-4), y0, 0.2);
+  const Eigen::Index n3 = y0.size() / 2;
+  EXPECT_LT((method->state() - fine).head(n3).norm(), (whole_steps - fine).head(n3).norm());
+}
+
+TEST(ArkodeStepper, ExhaustedHalvingsNameTheSmallestStep) {
+  auto s = testing::pinned_test_cloth();
+  IntegratorOptions o = arkode_options("arkode-dirk", "", 0.05);
+  o.max_newton_iters = 1;
+  o.max_step_halvings = 1;
+  auto method = make_integrator(o, *s);
+  method->reset(0.0, testing::shaken_state(*s));
+  try {
+    testing::run_until(*method, 1.0);
+    FAIL() << "no failure";
+  } catch (const IntegratorFailure& failure) {
+    EXPECT_EQ(failure.flag(), "ARK_CONV_FAILURE");
+    EXPECT_NE(std::string(failure.what()).find("halved 1 times, to 0.025 s"), std::string::npos)
         << failure.what();
   }
 }

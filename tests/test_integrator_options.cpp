@@ -1,6 +1,7 @@
 // The defaults that integrator options fall back to.
 #include <gtest/gtest.h>
 
+#include "core/input_error.hpp"
 #include "integrators/integrator_options.hpp"
 
 namespace drape {
@@ -20,6 +21,21 @@ TEST(IntegratorOptions, LinearSolverAndToleranceDefaultPerIntegrator) {
     EXPECT_EQ(linear_tolerance_of(arkode), 1e-8) << name;
     arkode.linear_solver = "pcg-multigrid";
     EXPECT_EQ(linear_solver_of(arkode), "pcg-multigrid") << name;
+  }
+}
+
+TEST(IntegratorOptions, StepHalvingsDefaultToTenAndAreBounded) {
+  const nlohmann::json dirk = {{"name", "arkode-dirk"}, {"dt", 1e-3}};
+  EXPECT_EQ(read_integrator_options(dirk, "scene.json", "integrator").max_step_halvings, 10);
+  for (const int bad : {-1, 31}) {
+    nlohmann::json o = dirk;
+    o["max_step_halvings"] = bad;
+    try {
+      read_integrator_options(o, "scene.json", "integrator");
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_STREQ(e.what(), "scene.json: integrator.max_step_halvings: must be between 0 and 30");
+    }
   }
 }
 
