@@ -44,31 +44,33 @@ spring_kernel::Arrays kernel_arrays(ConstComponents x, ConstComponents v, Compon
 
 namespace {
 
-// Column stride of the buffer: N rounded up to a page (512 doubles), plus 256 bytes, so column
-// k starts 256 k bytes into its page (k < 9 < 16 stay distinct).
-Eigen::Index staggered_stride(Eigen::Index n) {
+// Column stride: the rows rounded up to a page (512 doubles), plus 256 bytes, so that column k
+// starts 256 k bytes further into its page (16 columns before the offsets repeat).
+Eigen::Index staggered_stride(Eigen::Index rows) {
   constexpr Eigen::Index page = 512, shift = 32;
-  return (n + page - 1) / page * page + shift;
+  return (rows + page - 1) / page * page + shift;
 }
 
 }  // namespace
 
+StaggeredColumns::StaggeredColumns(Eigen::Index rows, Eigen::Index groups)
+    : m_rows(rows), m_buffer(staggered_stride(rows), 3 * groups) {}
+
+Components StaggeredColumns::group(Eigen::Index k) {
+  return Eigen::Map<Eigen::ArrayX3d, 0, Eigen::OuterStride<>>(
+      &m_buffer(0, 3 * k), m_rows, 3, Eigen::OuterStride<>(m_buffer.rows()));
+}
+
 GridSpringForces::GridSpringForces(const Cloth& cloth)
-    : m_particles(cloth.size()),
-      m_buffer(staggered_stride(cloth.size()), 9),
+    : m_columns(cloth.size(), 3),
       m_row_force(cloth.params.cols, 3),
       m_add(spring_kernel::has_avx() ? spring_kernel::add_avx : spring_kernel::add_sse2) {
   for (const SpringStencil& s : cloth.stencils)
     m_stencils.push_back(kernel_stencil(s, cloth.params.rows, cloth.params.cols));
 }
 
-Components GridSpringForces::columns(Eigen::Index first) {
-  return Eigen::Map<Eigen::ArrayX3d, 0, Eigen::OuterStride<>>(
-      &m_buffer(0, first), m_particles, 3, Eigen::OuterStride<>(m_buffer.rows()));
-}
-
 ConstComponents GridSpringForces::evaluate(ConstVecRef x, ConstVecRef v, double c) {
-  Components xs = columns(0), vs = columns(3), force = columns(6);
+  Components xs = m_columns.group(0), vs = m_columns.group(1), force = m_columns.group(2);
   to_components(x, xs);
   if (c != 0.0) to_components(v, vs);
   force.setZero();

@@ -23,6 +23,22 @@ inline void to_components(ConstVecRef interleaved, Components out) {
             .transpose();
 }
 
+/// Groups of N x 3 components in one buffer, each column starting at a different offset
+/// within the 4 KiB page. Columns a multiple of 4 KiB apart (N = 4096, or separate allocations,
+/// which the allocator aligns alike) alias in the low address bits that the processor uses to
+/// match loads with earlier stores, and such a load then waits for the store: the force
+/// evaluation at 64 x 64 ran 15 to 18 % slower, depending on where the arrays had landed.
+class StaggeredColumns {
+ public:
+  StaggeredColumns(Eigen::Index rows, Eigen::Index groups);
+  /// Group k: columns 3k, 3k + 1, 3k + 2.
+  Components group(Eigen::Index k);
+
+ private:
+  Eigen::Index m_rows;
+  Eigen::ArrayXXd m_buffer;
+};
+
 /// The kernel's description of a stencil's springs on a rows x cols grid.
 spring_kernel::Stencil kernel_stencil(const SpringStencil& stencil, int rows, int cols);
 /// The kernel's view of N x 3 arrays (`row_force`: cols x 3).
@@ -39,16 +55,8 @@ class GridSpringForces {
   ConstComponents evaluate(ConstVecRef x, ConstVecRef v, double c);
 
  private:
-  Components columns(Eigen::Index first);
-
-  Eigen::Index m_particles;
   std::vector<spring_kernel::Stencil> m_stencils;
-  // x, v and force (N x 3 each) in one buffer whose columns start at different offsets modulo
-  // the page: columns a multiple of 4 KiB apart (N = 4096) alias in the low address bits that
-  // the processor uses to match loads with earlier stores, and each such load waits for the
-  // store (measured: the force evaluation at 64 x 64 ran 15 to 18 % slower, depending on where
-  // the allocator had put the arrays).
-  Eigen::ArrayXXd m_buffer;
+  StaggeredColumns m_columns;   // x, v, force
   Eigen::ArrayX3d m_row_force;  // one row of springs, for stencils along rows
   void (*m_add)(const spring_kernel::Stencil&, double, const spring_kernel::Arrays&);
 };
