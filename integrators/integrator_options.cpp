@@ -5,6 +5,36 @@
 
 namespace drape {
 
+namespace {
+
+// Keys that only some integrators read: given to another one, they would be ignored without a
+// word, and the run would not be the one its scene describes.
+void reject_unused_keys(const JsonReader& in, const IntegratorOptions& o) {
+  const bool arkode = o.name.rfind("arkode-", 0) == 0;
+  const bool newton = o.name == "arkode-dirk" || o.name == "arkode-imex";
+  const bool linear = newton || o.name == "implicit-euler";
+  const struct {
+    const char* key;
+    bool used;
+    const char* users;
+  } keys[] = {
+      {"rtol", arkode, "the arkode-* integrators"},
+      {"atol", arkode, "the arkode-* integrators"},
+      {"max_dt", o.adaptive, "adaptive runs"},
+      {"max_newton_iters", newton, "arkode-dirk and arkode-imex"},
+      {"max_step_halvings", newton && !o.adaptive,
+       "fixed-step arkode-dirk and arkode-imex (adaptive runs shrink a failed step themselves)"},
+      {"linear_tolerance", linear, "implicit-euler, arkode-dirk and arkode-imex"},
+      {"max_linear_iters", linear, "implicit-euler, arkode-dirk and arkode-imex"},
+  };
+  for (const auto& k : keys)
+    if (!k.used && in.has(k.key))
+      throw in.error(k.key, "not used by this run of '" + o.name + "': only " + k.users +
+                                " read it");
+}
+
+}  // namespace
+
 IntegratorOptions read_integrator_options(const nlohmann::json& object, const std::string& file,
                                           const std::string& path) {
   JsonReader in(object, file, path);
@@ -33,6 +63,7 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
   if (o.max_linear_iters < 1) throw in.error("max_linear_iters", "must be at least 1");
   o.max_steps = static_cast<long>(in.positive("max_steps", in.number("max_steps", 1e8)));
   in.finish();
+  reject_unused_keys(in, o);
   validate_integrator_choice(o, file, path);
   return o;
 }

@@ -1,4 +1,4 @@
-// The defaults that integrator options fall back to.
+// The defaults that integrator options fall back to, and the keys a run would not use.
 #include <gtest/gtest.h>
 
 #include "core/input_error.hpp"
@@ -37,6 +37,54 @@ TEST(IntegratorOptions, StepHalvingsDefaultToTenAndAreBounded) {
       EXPECT_STREQ(e.what(), "scene.json: integrator.max_step_halvings: must be between 0 and 30");
     }
   }
+}
+
+std::string error_of(const nlohmann::json& options) {
+  try {
+    read_integrator_options(options, "scene.json", "integrator");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A key that the chosen integrator would ignore is an error naming it, like an unknown key.
+TEST(IntegratorOptions, KeysTheIntegratorDoesNotReadAreRejected) {
+  const struct {
+    nlohmann::json options;
+    const char* key;
+  } unused[] = {
+      {{{"name", "leapfrog"}, {"dt", 1e-4}, {"rtol", 1e-3}}, "rtol"},
+      {{{"name", "implicit-euler"}, {"dt", 1e-2}, {"atol", 1e-6}}, "atol"},
+      {{{"name", "arkode-erk"}, {"dt", 1e-4}, {"max_dt", 1e-3}}, "max_dt"},
+      {{{"name", "implicit-euler"}, {"dt", 1e-2}, {"max_newton_iters", 3}}, "max_newton_iters"},
+      {{{"name", "arkode-erk"}, {"dt", 1e-4}, {"max_step_halvings", 2}}, "max_step_halvings"},
+      {{{"name", "arkode-dirk"}, {"adaptive", true}, {"max_step_halvings", 2}},
+       "max_step_halvings"},
+      {{{"name", "symplectic-euler"}, {"dt", 1e-4}, {"linear_tolerance", 1e-6}},
+       "linear_tolerance"},
+      {{{"name", "arkode-erk"}, {"dt", 1e-4}, {"max_linear_iters", 9}}, "max_linear_iters"},
+  };
+  for (const auto& u : unused) {
+    const std::string prefix = "scene.json: integrator." + std::string(u.key) +
+                               ": not used by this run of '" +
+                               u.options["name"].get<std::string>() + "': only ";
+    EXPECT_EQ(error_of(u.options).rfind(prefix, 0), 0u) << error_of(u.options);
+  }
+  EXPECT_EQ(error_of({{"name", "leapfrog"}, {"dt", 1e-4}, {"rtol", 1e-3}}),
+            "scene.json: integrator.rtol: not used by this run of 'leapfrog': only the arkode-* "
+            "integrators read it");
+}
+
+TEST(IntegratorOptions, KeysAreAcceptedWhereTheyAreRead) {
+  const nlohmann::json used[] = {
+      {{"name", "arkode-erk"}, {"adaptive", true}, {"rtol", 1e-3}, {"atol", 1e-6}, {"max_dt", 1e-3}},
+      {{"name", "arkode-dirk"}, {"dt", 1e-3}, {"max_newton_iters", 4}, {"max_step_halvings", 2},
+       {"linear_tolerance", 1e-6}, {"max_linear_iters", 50}},
+      {{"name", "arkode-imex"}, {"adaptive", true}, {"max_newton_iters", 4}, {"max_dt", 1e-2}},
+      {{"name", "implicit-euler"}, {"dt", 1e-2}, {"linear_tolerance", 1e-4}, {"max_linear_iters", 50}},
+  };
+  for (const nlohmann::json& options : used) EXPECT_EQ(error_of(options), "") << options.dump();
 }
 
 }  // namespace
