@@ -70,6 +70,8 @@ INSTANTIATE_TEST_SUITE_P(
         OrderCase{"arkode-dirk", "ARKODE_SDIRK_2_1_2", 2, 1e-3, false},
         OrderCase{"arkode-dirk", "ARKODE_ARK324L2SA_DIRK_4_2_3", 3, 1e-3, false},
         OrderCase{"arkode-dirk", "ARKODE_ESDIRK436L2SA_6_3_4", 4, 2e-3, false},
+        OrderCase{"arkode-dirk", "ARKODE_ESDIRK437L2SA_7_3_4", 4, 2e-3, false},
+        OrderCase{"arkode-dirk", "ARKODE_ESDIRK547L2SA_7_4_5", 5, 4e-3, false},
         OrderCase{"arkode-imex", "ARKODE_ARK324L2SA_4_2_3", 3, 1e-3, true},
         OrderCase{"arkode-imex", "ARKODE_ARK436L2SA_6_3_4", 4, 2e-3, true}),
     [](const auto& test) { return std::string(test.param.table).substr(7); });
