@@ -183,12 +183,12 @@ bool solve_failed(const std::string& flag) {
 // A fixed step in fixed-step mode stops at its first failed solve (ARKODE does not shrink it):
 // here the interval is then taken again from its start as two half steps, each of which may be
 // halved again, as an adaptive code would shrink a failed step. Halvings are counted and
-// reported (summary.json); the interval's end and every later step keep the fixed step.
+// reported (summary.json); every later interval starts again at the fixed step.
 void ArkodeStepper::cover_fixed(double t_end, int halvings_left) {
   const double t_start = m_t;
   const Eigen::VectorXd start = m_y;
   try {
-    evolve(t_end);
+    evolve_fixed(t_end);
     return;
   } catch (const IntegratorFailure& failure) {
     if (!solve_failed(failure.flag()) || m_options.max_step_halvings == 0) throw;
@@ -200,20 +200,28 @@ void ArkodeStepper::cover_fixed(double t_end, int halvings_left) {
     }
   }
   ++m_counters.step_halvings;
-  const double middle = t_start + 0.5 * (t_end - t_start);
   m_t = t_start;
   m_y = start;  // same size: the buffer that m_y_vector views
-  restart_fixed(middle - t_start);
+  // The failed attempt left ARKODE's history and the contact set at the failed stages.
+  if (pairs_contacts()) m_system.collision().pair_contacts(positions());
+  restart(t_end - t_start);
+  const double middle = t_start + 0.5 * (t_end - t_start);
   cover_fixed(middle, halvings_left - 1);
-  restart_fixed(t_end - middle);
   cover_fixed(t_end, halvings_left - 1);
-  restart_fixed(m_options.dt);
 }
 
-void ArkodeStepper::restart_fixed(double step) {
-  if (pairs_contacts()) m_system.collision().pair_contacts(positions());
-  check_sundials(ARKStepSetFixedStep(m_arkode.get(), step), "ARKStepSetFixedStep");
-  restart(step);
+// One step from m_t to exactly t_end. ARKODE only shortens a fixed step to meet the stop time,
+// so the step is set to the interval each time: a remainder that fixed_step_end rounds up to a
+// whole step, the halves of a halved step and the return to dt after them all land exactly.
+void ArkodeStepper::evolve_fixed(double t_end) {
+  // Halved steps could otherwise take 2^max_step_halvings attempts inside one step() call, out
+  // of reach of the runner's check between calls.
+  if (m_counters.attempts >= m_options.max_steps)
+    throw IntegratorFailure("max_steps", "reached integrator.max_steps = " +
+                                             std::to_string(m_options.max_steps) +
+                                             " step attempts at t = " + std::to_string(m_t));
+  check_sundials(ARKStepSetFixedStep(m_arkode.get(), t_end - m_t), "ARKStepSetFixedStep");
+  evolve(t_end);
 }
 
 ArkodeStepper::ArkodeCounts ArkodeStepper::read_counts() const {

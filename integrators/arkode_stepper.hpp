@@ -50,8 +50,8 @@ class ArkodeStepper final : public Integrator {
   void evolve(double target);
   /// Fixed steps up to t_end, a failed one halved up to `halvings_left` times.
   void cover_fixed(double t_end, int halvings_left);
-  /// Restarts from the current state with fixed step `step`.
-  void restart_fixed(double step);
+  /// One fixed step of exactly t_end - m_t; throws IntegratorFailure.
+  void evolve_fixed(double t_end);
   ArkodeCounts read_counts() const;
   void accumulate_counters();
   ForceSplit explicit_split() const;

@@ -305,5 +305,56 @@ TEST(ArkodeStepper, ExhaustedHalvingsNameTheSmallestStep) {
   }
 }
 
+// After a run whose halvings ran out, a reset starts again at the fixed step, not at the last
+// half that was tried: from the equilibrium, where Newton converges at once, the first
+// step after the reset covers dt.
+TEST(ArkodeStepper, ResetAfterExhaustedHalvingsStartsAgainAtDt) {
+  auto s = testing::pinned_test_cloth(0.02, 0.002);
+  IntegratorOptions settling = arkode_options("arkode-dirk", "", 0.01);
+  Eigen::VectorXd equilibrium = Eigen::VectorXd::Zero(s->size());
+  equilibrium.head(3 * s->num_particles()) = testing::settle(*make_integrator(settling, *s), *s);
+  IntegratorOptions o = arkode_options("arkode-dirk", "", 0.05);
+  o.max_newton_iters = 2;  // too few for the shaken start, even at dt / 8
+  o.max_step_halvings = 3;
+  auto method = make_integrator(o, *s);
+  method->reset(0.0, testing::shaken_state(*s));
+  EXPECT_THROW(testing::run_until(*method, 1.0), IntegratorFailure);
+  method->reset(0.0, equilibrium);
+  EXPECT_DOUBLE_EQ(method->step(1.0), 0.05);
+  EXPECT_EQ(method->counters().step_halvings, 3);  // the first run's only
+}
+
+// Halved steps count against max_steps inside one step() call: a step that would need 2^10
+// attempts stops at the bound.
+TEST(ArkodeStepper, HalvedStepsStopAtMaxSteps) {
+  auto s = testing::pinned_test_cloth();
+  IntegratorOptions o = arkode_options("arkode-dirk", "", 0.05);
+  o.max_newton_iters = 1;
+  o.max_step_halvings = 10;
+  o.max_steps = 6;
+  auto method = make_integrator(o, *s);
+  method->reset(0.0, testing::shaken_state(*s));
+  try {
+    method->step(1.0);
+    FAIL() << "no failure";
+  } catch (const IntegratorFailure& failure) {
+    EXPECT_EQ(failure.flag(), "max_steps");
+    EXPECT_EQ(method->counters().attempts, 6);
+  }
+}
+
+// A stop time within round-off beyond one step is reached in that step, exactly (ARKODE alone
+// would stop at t + dt and leave a sliver for the next call).
+TEST(ArkodeStepper, FixedStepLandsExactlyOnAStopTimeJustBeyondDt) {
+  auto s = testing::pinned_test_cloth();
+  for (const char* name : {"arkode-erk", "arkode-dirk"}) {
+    auto method = make_integrator(arkode_options(name, "", 1e-3), *s);
+    method->reset(0.0, s->initial_state(0.0));
+    const double t_stop = 1e-3 * (1.0 + 1e-10);
+    EXPECT_EQ(method->step(t_stop), t_stop) << name;
+    EXPECT_EQ(method->counters().steps, 1) << name;
+  }
+}
+
 }  // namespace
 }  // namespace drape
