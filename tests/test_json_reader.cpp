@@ -2,21 +2,14 @@
 #include <gtest/gtest.h>
 
 #include "core/json_reader.hpp"
+#include "test_support.hpp"
 
 #include <fstream>
-#include <functional>
 
 namespace drape {
 namespace {
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using testing::input_error_message;
 
 TEST(JsonReader, ReadsValuesAndDefaults) {
   const nlohmann::json j = {{"a", 1.5}, {"n", 3}, {"s", "x"}, {"v", {1, 2, 3}}, {"b", true}};
@@ -33,25 +26,25 @@ TEST(JsonReader, ReadsValuesAndDefaults) {
 TEST(JsonReader, ErrorsNameFileAndFullPath) {
   const nlohmann::json j = {{"a", "text"}, {"extra", 1}, {"v", {1, 2}}, {"n", 1.5}};
   JsonReader in(j, "f.json", "cloth");
-  EXPECT_EQ(message_of([&] { in.number("a"); }),
+  EXPECT_EQ(input_error_message([&] { in.number("a"); }),
             "f.json: cloth.a: expected a number, got string");
-  EXPECT_EQ(message_of([&] { in.number("nope"); }), "f.json: cloth.nope: required field is missing");
-  EXPECT_EQ(message_of([&] { in.vec3("v"); }), "f.json: cloth.v: expected 3 numbers [x, y, z]");
-  EXPECT_EQ(message_of([&] { in.integer("n"); }), "f.json: cloth.n: expected an integer, got 1.5");
-  EXPECT_EQ(message_of([&] { in.positive("a", -1.0); }), "f.json: cloth.a: must be positive, got -1.0");
-  EXPECT_EQ(message_of([&] { in.finish(); }), "f.json: cloth.extra: unknown key");
+  EXPECT_EQ(input_error_message([&] { in.number("nope"); }), "f.json: cloth.nope: required field is missing");
+  EXPECT_EQ(input_error_message([&] { in.vec3("v"); }), "f.json: cloth.v: expected 3 numbers [x, y, z]");
+  EXPECT_EQ(input_error_message([&] { in.integer("n"); }), "f.json: cloth.n: expected an integer, got 1.5");
+  EXPECT_EQ(input_error_message([&] { in.positive("a", -1.0); }), "f.json: cloth.a: must be positive, got -1.0");
+  EXPECT_EQ(input_error_message([&] { in.finish(); }), "f.json: cloth.extra: unknown key");
   const nlohmann::json huge = {{"rows", 10000000000LL}};
   JsonReader big(huge, "f.json", "cloth");
-  EXPECT_EQ(message_of([&] { big.integer("rows"); }),
+  EXPECT_EQ(input_error_message([&] { big.integer("rows"); }),
             "f.json: cloth.rows: integer out of range: 10000000000");
 }
 
 TEST(JsonReader, MissingAndBrokenFilesNameTheFile) {
-  EXPECT_EQ(message_of([] { read_json_file("/nonexistent/scene.json"); }),
+  EXPECT_EQ(input_error_message([] { read_json_file("/nonexistent/scene.json"); }),
             "/nonexistent/scene.json: cannot open file");
   const std::string broken = ::testing::TempDir() + "broken.json";
   std::ofstream(broken) << "{\"cloth\": [1, 2";
-  EXPECT_NE(message_of([&] { read_json_file(broken); }).find(broken + ": not valid JSON"),
+  EXPECT_NE(input_error_message([&] { read_json_file(broken); }).find(broken + ": not valid JSON"),
             std::string::npos);
 }
 

@@ -3,6 +3,7 @@
 
 #include "core/input_error.hpp"
 #include "core/scene.hpp"
+#include "test_support.hpp"
 
 namespace drape {
 namespace {
@@ -19,12 +20,7 @@ nlohmann::json valid_scene() {
 }
 
 std::string error_for(const nlohmann::json& scene) {
-  try {
-    parse_scene(scene, "scene.json", ".");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return testing::input_error_message([&] { parse_scene(scene, "scene.json", "."); });
 }
 
 nlohmann::json with(const std::string& assignment) {

@@ -7,8 +7,19 @@
 #include <random>
 
 #include "core/cloth_system.hpp"
+#include "core/input_error.hpp"
 
 namespace drape::testing {
+
+/// The message of the InputError that f throws, or "no error".
+inline std::string input_error_message(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
 
 /// A hanging rows x cols cloth with no object, springs of every family, 2 cm spacing.
 inline ClothParams small_cloth(int rows, int cols) {
