@@ -92,6 +92,17 @@ TEST(DrapelabRun, SetOverridesAreValidatedLikeTheFile) {
   r = drapelab("run " + scene.string() + " --out /tmp/unused --set integrator.name=euler-forward");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("integrator.name: unknown integrator 'euler-forward'"), std::string::npos) << r.err;
+  // The scene's integrator is leapfrog: a key only ARKODE reads is refused, not ignored.
+  r = drapelab("run " + scene.string() + " --out /tmp/unused --set integrator.rtol=1e-3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(scene.string() + ": integrator.rtol: not used by this run of 'leapfrog'"),
+            std::string::npos)
+      << r.err;
+  r = drapelab("run " + scene.string() +
+               " --out /tmp/unused --set integrator.name=arkode-dirk --set integrator.max_step_halvings=31");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("integrator.max_step_halvings: must be between 0 and 30"), std::string::npos)
+      << r.err;
 }
 
 TEST(DrapelabRun, MissingFileAndBadUsageExitWithTwo) {
