@@ -5,8 +5,8 @@
 // See docs/integrators.md.
 #include <benchmark/benchmark.h>
 
-#include "draped_cloth.hpp"
-#include "integrators/registry.hpp"
+#include "experiments/benchmarks/draped_cloth.hpp"
+#include "integrators/interface/registry.hpp"
 
 namespace drape {
 namespace {

@@ -6,9 +6,9 @@
 #include <random>
 #include <vector>
 
-#include "core/grid_spring_forces.hpp"
-#include "draped_cloth.hpp"
-#include "integrators/leapfrog.hpp"
+#include "core/forces/grid_spring_forces.hpp"
+#include "experiments/benchmarks/draped_cloth.hpp"
+#include "integrators/explicit/leapfrog.hpp"
 
 namespace drape {
 namespace {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <memory>
 
-#include "core/cloth_system.hpp"
-#include "core/dummy_sources.hpp"
-#include "integrators/leapfrog.hpp"
+#include "core/model/cloth_system.hpp"
+#include "core/dummy/dummy_sources.hpp"
+#include "integrators/explicit/leapfrog.hpp"
 
 namespace drape::bench {
 

@@ -1,0 +1,328 @@
+#include "core/manipulations/manipulations.hpp"
+
+#include <limits>
+
+#include "core/manipulations/mapping.hpp"
+
+namespace drape {
+
+namespace {
+
+// Keys due within this of a step's end are applied at that step (fixed steps accumulate
+// round-off in t).
+constexpr double key_time_eps = 1e-9;
+
+/// A held particle's prescribed motion: the interpolated hand. Where the track has no sample
+/// (the hand lost within a step) it stays at `parked`.
+class HandTrajectory final : public Trajectory {
+ public:
+  HandTrajectory(const HandTrack& track, Hand hand, const Vec3& parked)
+      : m_track(track), m_hand(hand), m_parked(parked) {}
+  Vec3 position(double t) const override {
+    const auto m = m_track.motion(m_hand, t);
+    return m ? m->position : m_parked;
+  }
+  Vec3 velocity(double t) const override {
+    const auto m = m_track.motion(m_hand, t);
+    return m ? m->velocity : Vec3::Zero();
+  }
+  Vec3 acceleration(double t) const override {
+    const auto m = m_track.motion(m_hand, t);
+    return m ? m->acceleration : Vec3::Zero();
+  }
+
+ private:
+  const HandTrack& m_track;
+  Hand m_hand;
+  Vec3 m_parked;
+};
+
+}  // namespace
+
+namespace detail {
+
+/// The state as read, copied only once something changes it.
+class StateEdit {
+ public:
+  explicit StateEdit(const Eigen::VectorXd& original) : m_original(original) {}
+  const Eigen::VectorXd& current() const { return m_edited ? *m_edited : m_original; }
+  Eigen::VectorXd& edit() {
+    if (!m_edited) m_edited = m_original;
+    return *m_edited;
+  }
+  std::optional<Eigen::VectorXd> take() { return std::move(m_edited); }
+
+ private:
+  const Eigen::VectorXd& m_original;
+  std::optional<Eigen::VectorXd> m_edited;
+};
+
+}  // namespace detail
+
+const char* hand_name(Hand hand) { return hand == Hand::Left ? "left" : "right"; }
+
+nlohmann::json ManipulationEvent::to_json(const Cloth& cloth) const {
+  nlohmann::json j = {{"t", t}, {"type", type}};
+  if (!key.empty()) j["key"] = key;
+  if (!hand.empty()) j["hand"] = hand;
+  if (particle >= 0) {
+    j["particle"] = particle;
+    j["row"] = cloth.row_of(particle);
+    j["col"] = cloth.col_of(particle);
+  }
+  if (object_particle >= 0) j["object_particle"] = object_particle;
+  if (type == "hold") j["distance"] = value;
+  if (type == "attach_fixed") j["attach_error"] = value;
+  if (!reason.empty()) j["reason"] = reason;
+  return j;
+}
+
+Manipulator::Manipulator(ClothSystem& system, const HandTrack* track,
+                         const ManipulationParams& params)
+    : m_system(system), m_track(track), m_params(params) {
+  m_hands = {HandState{Hand::Left}, HandState{Hand::Right}};
+}
+
+double Manipulator::next_key_time(double t) const {
+  if (!m_track) return std::numeric_limits<double>::infinity();
+  for (std::size_t k = m_next_key; k < m_track->keys().size(); ++k)
+    if (m_track->keys()[k].t > t + key_time_eps) return m_track->keys()[k].t;
+  return std::numeric_limits<double>::infinity();
+}
+
+void Manipulator::ignore(double t, const std::string& key, const std::string& reason) {
+  ManipulationEvent e;
+  e.t = t;
+  e.type = "ignored";
+  e.key = key;
+  e.reason = reason;
+  m_events.push_back(e);
+}
+
+int Manipulator::nearest_free_particle(const Vec3& p, const Eigen::VectorXd& y,
+                                       double& distance) const {
+  const auto& fixed = m_system.constraints().mask();
+  int best = -1;
+  double best2 = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < m_system.num_particles(); ++i) {
+    if (fixed[i]) continue;
+    const double d2 = (y.segment<3>(3 * i) - p).squaredNorm();
+    if (d2 < best2) best2 = d2, best = i;
+  }
+  distance = std::sqrt(best2);
+  return best;
+}
+
+std::optional<Eigen::VectorXd> Manipulator::update(double t, const Eigen::VectorXd& y) {
+  detail::StateEdit state(y);
+  bool changed = false;
+  finish_attaches(t, state.current(), changed);
+  if (m_track) {
+    const auto& keys = m_track->keys();
+    while (m_next_key < keys.size() && keys[m_next_key].t <= t + key_time_eps) {
+      apply_key(t, keys[m_next_key].key, state, changed);
+      ++m_next_key;
+    }
+    update_holds(t, state, changed);
+  }
+  if (!changed) return std::nullopt;
+  Eigen::VectorXd& out = state.edit();
+  const Eigen::Index n3 = 3 * m_system.num_particles();
+  m_system.constraints().project(t, out.head(n3), out.tail(n3));
+  return state.take();
+}
+
+void Manipulator::add_event(double t, const std::string& type, const std::string& key,
+                            const HandState* hand, int particle, int object_particle,
+                            double value) {
+  ManipulationEvent e;
+  e.t = t;
+  e.type = type;
+  e.key = key;
+  if (hand) e.hand = hand_name(hand->hand);
+  e.particle = particle;
+  e.object_particle = object_particle;
+  e.value = value;
+  m_events.push_back(e);
+}
+
+void Manipulator::apply_key(double t, const std::string& key, detail::StateEdit& state,
+                            bool& changed) {
+  if (key == "r") return release(t, key, changed);
+  if (key == "a") return attach(t, key, state, changed);
+  if (key == "m") return map(t, key, state, changed);
+  ignore(t, key, "no manipulation is bound to this key (r release, a attach, m map)");
+}
+
+void Manipulator::release(double t, const std::string& key, bool& changed) {
+  ConstraintSet& constraints = m_system.constraints();
+  if (m_params.release_held) {
+    bool any = false;
+    for (HandState& h : m_hands) {
+      if (h.held < 0) continue;
+      constraints.release(h.held);
+      add_event(t, "release", key, &h, h.held);
+      h.held = -1;
+      h.armed = false;
+      h.paused = false;
+      any = true;
+    }
+    if (!any) return ignore(t, key, "release targets the held particle and nothing is held");
+    changed = true;
+    return;
+  }
+  const int i = m_system.cloth().index(m_params.release_pin.row, m_params.release_pin.col);
+  if (!constraints.is_fixed(i)) return ignore(t, key, "the release particle is not fixed");
+  constraints.release(i);
+  HandState* holder = nullptr;
+  for (HandState& h : m_hands)
+    if (h.held == i) holder = &h;
+  if (holder) {
+    holder->held = -1;
+    holder->armed = false;
+    holder->paused = false;
+  }
+  add_event(t, "release", key, holder, i);
+  changed = true;
+}
+
+void Manipulator::attach(double t, const std::string& key, detail::StateEdit& state,
+                         bool& changed) {
+  const Dummy* dummy = m_system.dummy();
+  if (!dummy) return ignore(t, key, "attach needs an object and the scene has none");
+  bool any = false;
+  for (HandState& h : m_hands) {
+    if (h.held < 0) continue;
+    const Vec3 hand_position = m_system.constraints().trajectory(h.held)->position(t);
+    const int o = dummy->nearest(hand_position).index;
+    const int i = h.held;
+    m_system.constraints().release(i);
+    Eigen::VectorXd& y = state.edit();
+    const Eigen::Index n3 = 3 * m_system.num_particles();
+    // The particle starts from rest on the object particle; collision pushes it out.
+    y.segment<3>(3 * i) = dummy->position(o);
+    y.segment<3>(n3 + 3 * i).setZero();
+    add_event(t, "attach", key, &h, i, o);
+    h.held = -1;
+    h.armed = false;
+    h.paused = false;
+    m_attaching.push_back({i, o, m_params.attach_iterations});
+    any = true;
+  }
+  if (!any) return ignore(t, key, "attach needs a held particle and nothing is held");
+  changed = true;
+  if (m_params.attach_iterations == 0) finish_attaches(t, state.current(), changed);
+}
+
+void Manipulator::finish_attaches(double t, const Eigen::VectorXd& y, bool& changed) {
+  const Dummy* dummy = m_system.dummy();
+  const double delta = m_system.params().collision.threshold;
+  for (auto it = m_attaching.begin(); it != m_attaching.end();) {
+    // Called once after every step: after attach_iterations steps the particle is fixed.
+    if (--it->steps_left > 0) {
+      ++it;
+      continue;
+    }
+    const int i = it->particle, o = it->object_particle;
+    if (m_system.constraints().is_fixed(i)) {
+      ManipulationEvent e;
+      e.t = t;
+      e.type = "ignored";
+      e.particle = i;
+      e.reason = "attach not completed: the particle was fixed again before its iterations ended";
+      m_events.push_back(e);
+    } else {
+      const Vec3 x = y.segment<3>(3 * i);
+      m_system.constraints().fix_at(i, x);
+      const Vec3 target = dummy->position(o) + delta * dummy->normal(o);
+      add_event(t, "attach_fixed", "", nullptr, i, o, (x - target).norm());
+      changed = true;
+    }
+    it = m_attaching.erase(it);
+  }
+}
+
+void Manipulator::map(double t, const std::string& key, detail::StateEdit& state,
+                      bool& changed) {
+  const Dummy* dummy = m_system.dummy();
+  if (!dummy) return ignore(t, key, "map needs an object and the scene has none");
+  const Cloth& cloth = m_system.cloth();
+  ConstraintSet& constraints = m_system.constraints();
+  // Mapping lays out the whole cloth anew: every earlier constraint and hold refers to the
+  // old layout, so all are dropped before the top row and column 0 are fixed.
+  for (const int i : std::vector<int>(constraints.fixed_particles())) constraints.release(i);
+  for (HandState& h : m_hands) {
+    h.held = -1;
+    h.armed = false;
+    h.paused = false;
+  }
+  m_attaching.clear();
+  Eigen::VectorXd& y = state.edit();
+  const Eigen::Index n3 = 3 * m_system.num_particles();
+  y.head(n3) = map_cloth(cloth, *dummy, m_params.map_top, m_params.map_direction,
+                         m_system.params().collision.threshold);
+  y.tail(n3).setZero();
+  for (int i = 0; i < cloth.size(); ++i)
+    if (cloth.row_of(i) == 0 || cloth.col_of(i) == 0) constraints.fix_at(i, y.segment<3>(3 * i));
+  add_event(t, "map", key, nullptr, -1);
+  changed = true;
+}
+
+void Manipulator::update_holds(double t, detail::StateEdit& state, bool& changed) {
+  ConstraintSet& constraints = m_system.constraints();
+  for (HandState& h : m_hands) {
+    auto motion = m_track->motion(h.hand, t);
+    if (motion && !motion->available) motion.reset();  // seen before, not now
+    if (h.held >= 0) {
+      const Vec3 x = state.current().segment<3>(3 * h.held);
+      if (!motion && !h.paused) {
+        // The hand is lost: the particle stays where it is until the hand is tracked again.
+        constraints.fix_at(h.held, x);
+        h.paused = true;
+        add_event(t, "hold_paused", "", &h, h.held);
+        changed = true;
+      } else if (motion && h.paused) {
+        constraints.fix(h.held, std::make_shared<HandTrajectory>(*m_track, h.hand, x));
+        h.paused = false;
+        add_event(t, "hold_resumed", "", &h, h.held);
+        changed = true;
+      }
+      continue;
+    }
+    if (!motion) continue;
+    double distance = 0.0;
+    const int candidate = nearest_free_particle(motion->position, state.current(), distance);
+    if (candidate < 0) continue;
+    if (!h.armed) {
+      // After a release the hand is still at the particle: it must move away before it can
+      // hold again, or every release would be undone at once.
+      h.armed = distance >= m_params.hold_threshold;
+      continue;
+    }
+    if (distance >= m_params.hold_threshold) continue;
+    h.held = candidate;
+    constraints.fix(candidate, std::make_shared<HandTrajectory>(*m_track, h.hand,
+                                                                 state.current().segment<3>(3 * candidate)));
+    add_event(t, "hold", "", &h, candidate, -1, distance);
+    changed = true;
+  }
+}
+
+std::vector<HandStatus> Manipulator::hands(double t, const Eigen::VectorXd& y) const {
+  std::vector<HandStatus> out;
+  for (const HandState& h : m_hands) {
+    HandStatus s;
+    s.hand = h.hand;
+    s.held = h.held;
+    const auto motion = m_track ? m_track->motion(h.hand, t) : std::nullopt;
+    if (motion && motion->available) {
+      s.available = true;
+      s.position = motion->position;
+      s.candidate = nearest_free_particle(s.position, y, s.distance);
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
+}  // namespace drape

@@ -1,0 +1,228 @@
+#include "core/model/cloth_system.hpp"
+
+#include <algorithm>
+#include <optional>
+#include <vector>
+
+#include "core/forces/forces.hpp"
+
+namespace drape {
+
+ClothSystem::ClothSystem(Cloth cloth, std::shared_ptr<const Dummy> dummy, ForceParams params)
+    : m_cloth(std::move(cloth)),
+      m_dummy(std::move(dummy)),
+      m_collision(m_dummy, params.collision, m_cloth.size()),
+      m_spring_forces(m_cloth),
+      m_params(params),
+      m_constraints(m_cloth.size()) {}
+
+Eigen::VectorXd ClothSystem::initial_state(double t) const {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(size());
+  const Eigen::Index n3 = 3 * num_particles();
+  y.head(n3) = m_cloth.rest_positions;
+  m_constraints.project(t, VecMap(y.data(), n3), VecMap(y.data() + n3, n3));
+  return y;
+}
+
+void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f) const {
+  forces(x, v, f, ForceSplit::all);
+}
+
+void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit split) const {
+  evaluate_forces<false>(x, v, f, split);
+}
+
+template <bool per_mass>
+void ClothSystem::evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit split) const {
+  const bool with_springs = split != ForceSplit::non_springs;
+  const bool with_rest = split != ForceSplit::springs;
+  const double c_air = m_cloth.params.damping_air;
+  const double m = particle_mass();
+  const Vec3 weight = m * m_params.gravity;
+  const bool with_collision = m_dummy && with_rest;
+  std::optional<ConstComponents> springs;
+  if (with_springs) springs.emplace(m_spring_forces.evaluate(x, v, m_cloth.params.damping_spring));
+
+  // One pass over particles gathers the terms and divides by the mass (a separate pass over 3N
+  // values would cost as much again), adding in registers and storing each particle once.
+  for (int i = 0; i < num_particles(); ++i) {
+    Vec3 total = Vec3::Zero();
+    if (springs) total = Vec3((*springs)(i, 0), (*springs)(i, 1), (*springs)(i, 2));
+    if (with_rest) total += weight - c_air * particle(v, i);
+    if (with_collision) total += m_collision.force(i, particle(x, i));
+    if constexpr (per_mass) total /= m;
+    particle(f, i) = total;
+  }
+}
+
+void ClothSystem::acceleration(double t, ConstVecRef x, ConstVecRef v,
+                               VecRef a) const {
+  evaluate_forces<true>(x, v, a, ForceSplit::all);
+  for (const int i : m_constraints.fixed_particles())
+    particle(a, i) = m_constraints.trajectory(i)->acceleration(t);
+}
+
+void ClothSystem::rhs(double t, ConstVecRef y, VecRef y_dot) const {
+  rhs(t, y, y_dot, ForceSplit::all);
+}
+
+void ClothSystem::rhs(double t, ConstVecRef y, VecRef y_dot, ForceSplit split) const {
+  const Eigen::Index n3 = 3 * num_particles();
+  const ConstVecMap x(y.data(), n3), v(y.data() + n3, n3);
+  VecMap x_dot(y_dot.data(), n3), v_dot(y_dot.data() + n3, n3);
+  evaluate_forces<true>(x, v, v_dot, split);
+  if (split == ForceSplit::non_springs) {
+    x_dot.setZero();
+    m_constraints.zero_fixed(v_dot);
+    return;
+  }
+  x_dot = v;
+  m_constraints.apply_to_rhs(t, x_dot, v_dot);
+}
+
+int ClothSystem::project(double t, VecRef x, VecRef v) const {
+  int corrected = 0;
+  if (m_dummy) {
+    const auto& fixed = m_constraints.mask();
+    for (int i = 0; i < num_particles(); ++i) {
+      if (fixed[i]) continue;
+      Vec3 xi = particle(x, i), vi = particle(v, i);
+      if (!m_collision.correct_penetration(i, xi, vi)) continue;
+      particle(x, i) = xi;
+      particle(v, i) = vi;
+      ++corrected;
+    }
+  }
+  m_constraints.project(t, x, v);
+  return corrected;
+}
+
+EnergyBreakdown ClothSystem::energy(ConstVecRef x, ConstVecRef v) const {
+  EnergyBreakdown e;
+  const double m = particle_mass();
+  e.kinetic = 0.5 * m * v.squaredNorm();
+  const SpringSet& springs = m_cloth.springs;
+  for (Eigen::Index s = 0; s < springs.size(); ++s)
+    e.spring += spring_energy(particle(x, springs.second[s]) - particle(x, springs.first[s]),
+                              springs.stiffness[s], springs.rest[s]);
+  for (int i = 0; i < num_particles(); ++i) e.gravity -= m * m_params.gravity.dot(particle(x, i));
+  for (int i = 0; m_dummy && i < num_particles(); ++i)
+    e.collision += m_collision.energy(i, particle(x, i));
+  return e;
+}
+
+// Calls visit(i, j, Jx, Jv) for every pair block: j >= 0 for springs (the pair pattern of
+// forces.hpp), j < 0 for a block acting on particle i alone (dF_i/dx_i, dF_i/dv_i).
+template <class Visit>
+void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite,
+                                          ForceSplit split, Visit&& visit) const {
+  const SpringSet& springs = m_cloth.springs;
+  const double c_spring = m_cloth.params.damping_spring;
+  const bool with_springs = split != ForceSplit::non_springs;
+  for (Eigen::Index e = 0; with_springs && e < springs.size(); ++e) {
+    const int i = springs.first[e], j = springs.second[e];
+    const Vec3 d = particle(x, j) - particle(x, i);
+    Mat3 jx = spring_jacobian(d, springs.stiffness[e], springs.rest[e], definite);
+    Mat3 jv = Mat3::Zero();
+    if (c_spring > 0.0) {
+      jv = damping_velocity_jacobian(d, c_spring);
+      // The damping's dependence on x is not symmetric; a definite (SPD) request leaves it out.
+      if (!definite) jx += damping_position_jacobian(d, particle(v, j) - particle(v, i), c_spring);
+    }
+    visit(i, j, jx, jv);
+  }
+  if (split == ForceSplit::springs) return;
+  const Mat3 air = -m_cloth.params.damping_air * Mat3::Identity();
+  for (int i = 0; i < num_particles(); ++i)
+    visit(i, -1, m_collision.jacobian(i, particle(x, i), definite), air);
+}
+
+void ClothSystem::force_jacobian_times(ConstVecRef x, ConstVecRef v,
+                                       ConstVecRef dx, ConstVecRef dv, VecRef out,
+                                       bool definite) const {
+  force_jacobian_times(x, v, dx, dv, out, definite, ForceSplit::all);
+}
+
+void ClothSystem::force_jacobian_times(ConstVecRef x, ConstVecRef v, ConstVecRef dx,
+                                       ConstVecRef dv, VecRef out, bool definite,
+                                       ForceSplit split) const {
+  out.setZero();
+  for_each_jacobian_block(x, v, definite, split, [&](int i, int j, const Mat3& jx, const Mat3& jv) {
+    if (j < 0) {
+      particle(out, i) += jx * particle(dx, i) + jv * particle(dv, i);
+      return;
+    }
+    const Vec3 df = jx * (particle(dx, j) - particle(dx, i)) + jv * (particle(dv, j) - particle(dv, i));
+    particle(out, i) += df;
+    particle(out, j) -= df;
+  });
+  m_constraints.zero_fixed(out);
+}
+
+void ClothSystem::force_jacobians(ConstVecRef x, ConstVecRef v, bool definite,
+                                  Eigen::SparseMatrix<double>& dfdx,
+                                  Eigen::SparseMatrix<double>& dfdv) const {
+  force_jacobians(x, v, definite, dfdx, dfdv, ForceSplit::all);
+}
+
+void ClothSystem::force_jacobians(ConstVecRef x, ConstVecRef v, bool definite,
+                                  Eigen::SparseMatrix<double>& dfdx,
+                                  Eigen::SparseMatrix<double>& dfdv, ForceSplit split) const {
+  using Triplet = Eigen::Triplet<double>;
+  std::vector<Triplet> tx, tv;
+  const auto& fixed = m_constraints.mask();
+  auto add_block = [&](std::vector<Triplet>& t, int row, int col, const Mat3& block) {
+    if (fixed[row]) return;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        if (block(a, b) != 0.0) t.emplace_back(3 * row + a, 3 * col + b, block(a, b));
+  };
+  auto add_pair = [&](std::vector<Triplet>& t, int i, int j, const Mat3& block) {
+    add_block(t, i, i, -block);
+    add_block(t, i, j, block);
+    add_block(t, j, i, block);
+    add_block(t, j, j, -block);
+  };
+  for_each_jacobian_block(x, v, definite, split, [&](int i, int j, const Mat3& jx, const Mat3& jv) {
+    if (j < 0) {
+      add_block(tx, i, i, jx);
+      add_block(tv, i, i, jv);
+    } else {
+      add_pair(tx, i, j, jx);
+      add_pair(tv, i, j, jv);
+    }
+  });
+  const Eigen::Index n3 = 3 * num_particles();
+  dfdx.resize(n3, n3);
+  dfdv.resize(n3, n3);
+  dfdx.setFromTriplets(tx.begin(), tx.end());
+  dfdv.setFromTriplets(tv.begin(), tv.end());
+}
+
+void ClothSystem::force_jacobian_blocks(ConstVecRef x, ConstVecRef v, bool definite,
+                                        ForceSplit split, JacobianBlocks& blocks) const {
+  const auto springs = static_cast<std::size_t>(m_cloth.springs.size());
+  const auto particles = static_cast<std::size_t>(num_particles());
+  // Every block is written: the spring blocks in spring order, each particle block once.
+  blocks.spring_x.resize(springs);
+  blocks.spring_v.resize(springs);
+  blocks.particle_x.assign(particles, Mat3::Zero());
+  blocks.particle_v.assign(particles, Mat3::Zero());
+  std::size_t e = 0;
+  for_each_jacobian_block(x, v, definite, split, [&](int i, int j, const Mat3& jx, const Mat3& jv) {
+    if (j < 0) {
+      blocks.particle_x[static_cast<std::size_t>(i)] = jx;
+      blocks.particle_v[static_cast<std::size_t>(i)] = jv;
+      return;
+    }
+    blocks.spring_x[e] = jx;
+    blocks.spring_v[e] = jv;
+    ++e;
+  });
+  if (split == ForceSplit::non_springs) {
+    std::fill(blocks.spring_x.begin(), blocks.spring_x.end(), Mat3::Zero());
+    std::fill(blocks.spring_v.begin(), blocks.spring_v.end(), Mat3::Zero());
+  }
+}
+
+}  // namespace drape

@@ -1,0 +1,177 @@
+#include "core/scene/scene.hpp"
+
+#include <cmath>
+
+#include "core/scene/input_error.hpp"
+#include "core/scene/json_reader.hpp"
+
+namespace drape {
+
+namespace {
+
+constexpr double direction_tolerance = 1e-6;
+
+Vec3 unit_direction(JsonReader& in, const std::string& key, const Vec3& fallback) {
+  const Vec3 dir = in.vec3(key, fallback);
+  if (std::abs(dir.norm() - 1.0) > direction_tolerance)
+    throw in.error(key, "must be a unit vector, has length " + std::to_string(dir.norm()));
+  return dir;
+}
+
+ClothParams read_cloth(JsonReader in) {
+  ClothParams c;
+  c.rows = in.integer("rows");
+  c.cols = in.integer("cols");
+  if (c.rows < 1) throw in.error("rows", "must be at least 1");
+  if (c.cols < 1) throw in.error("cols", "must be at least 1");
+  if (c.rows * c.cols < 2) throw in.error("cols", "a cloth needs at least 2 particles");
+  c.spacing = in.positive("spacing", in.number("spacing"));
+  c.origin = in.vec3("origin");
+  c.col_dir = unit_direction(in, "col_dir", c.col_dir);
+  c.row_dir = unit_direction(in, "row_dir", c.row_dir);
+  if (std::abs(c.col_dir.dot(c.row_dir)) > direction_tolerance)
+    throw in.error("row_dir", "must be orthogonal to cloth.col_dir");
+  c.particle_mass = in.positive("particle_mass", in.number("particle_mass"));
+  c.k_structural = in.positive("k_structural", in.number("k_structural"));
+  c.k_shear = in.non_negative("k_shear", in.number("k_shear", c.k_structural));
+  c.k_bending = in.non_negative("k_bending", in.number("k_bending", 0.0));
+  c.damping_spring = in.non_negative("damping_spring", in.number("damping_spring", 0.0));
+  c.damping_air = in.non_negative("damping_air", in.number("damping_air", 0.0));
+  in.finish();
+  return c;
+}
+
+GridPoint read_grid_point(const nlohmann::json& value, const ClothParams& cloth,
+                          const std::string& file, const std::string& field) {
+  if (!value.is_array() || value.size() != 2 || !value[0].is_number_integer() ||
+      !value[1].is_number_integer())
+    throw InputError(file, field, "expected [row, col] integers, got " + value.dump());
+  GridPoint p{value[0].get<int>(), value[1].get<int>()};
+  if (p.row < 0 || p.row >= cloth.rows || p.col < 0 || p.col >= cloth.cols)
+    throw InputError(file, field,
+                     "[" + std::to_string(p.row) + ", " + std::to_string(p.col) +
+                         "] is off the " + std::to_string(cloth.rows) + " x " +
+                         std::to_string(cloth.cols) + " grid");
+  return p;
+}
+
+std::vector<GridPoint> read_pins(JsonReader& in, const ClothParams& cloth) {
+  std::vector<GridPoint> pins;
+  if (!in.has("pins")) return pins;
+  const auto& list = in.raw("pins");
+  if (!list.is_array()) throw in.error("pins", "expected a list of [row, col]");
+  for (std::size_t k = 0; k < list.size(); ++k)
+    pins.push_back(read_grid_point(list[k], cloth, in.file(), in.field("pins") + "[" +
+                                                                 std::to_string(k) + "]"));
+  return pins;
+}
+
+CollisionParams read_collision(JsonReader in) {
+  CollisionParams c;
+  c.threshold = in.positive("threshold", in.number("threshold", c.threshold));
+  c.stiffness = in.non_negative("stiffness", in.number("stiffness", c.stiffness));
+  const std::string model = in.string("model", "particle");
+  if (model == "surface")
+    c.model = CollisionModel::surface;
+  else if (model != "particle")
+    throw in.error("model", "unknown collision model '" + model + "' (known: particle, surface)");
+  in.finish();
+  return c;
+}
+
+ManipulationParams read_manipulation(JsonReader in, const ClothParams& cloth) {
+  ManipulationParams m;
+  m.hold_threshold = in.positive("hold_threshold", in.number("hold_threshold", m.hold_threshold));
+  if (in.has("release")) {
+    const auto& release = in.raw("release");
+    if (release.is_string()) {
+      if (release.get<std::string>() != "held")
+        throw in.error("release", "expected \"held\" or a pin [row, col]");
+    } else {
+      m.release_held = false;
+      m.release_pin = read_grid_point(release, cloth, in.file(), in.field("release"));
+    }
+  }
+  m.attach_iterations = in.integer("attach_iterations", m.attach_iterations);
+  if (m.attach_iterations < 0) throw in.error("attach_iterations", "must not be negative");
+  m.map_top = in.number("map_top", m.map_top);
+  m.map_direction = in.integer("map_direction", m.map_direction);
+  if (m.map_direction != 1 && m.map_direction != -1)
+    throw in.error("map_direction", "must be +1 or -1");
+  in.finish();
+  return m;
+}
+
+OutputOptions read_output(JsonReader in) {
+  OutputOptions o;
+  o.energy_interval =
+      in.non_negative("energy_interval", in.number("energy_interval", o.energy_interval));
+  o.trace_interval = in.non_negative("trace_interval", in.number("trace_interval", 0.0));
+  o.vtk_interval = in.non_negative("vtk_interval", in.number("vtk_interval", 0.0));
+  in.finish();
+  return o;
+}
+
+}  // namespace
+
+void apply_override(nlohmann::json& scene, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--set", assignment, "expected key.path=value");
+  const std::string path = assignment.substr(0, eq);
+  const std::string text = assignment.substr(eq + 1);
+  nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
+  if (value.is_discarded()) value = text;
+
+  nlohmann::json* node = &scene;
+  std::size_t start = 0;
+  while (true) {
+    const auto dot = path.find('.', start);
+    const std::string key = path.substr(start, dot == std::string::npos ? dot : dot - start);
+    if (key.empty()) throw InputError("--set", path, "empty key in the path");
+    if (node->is_null()) *node = nlohmann::json::object();
+    if (!node->is_object())
+      throw InputError("--set", path, "'" + key + "' is inside a value that is not an object");
+    node = &(*node)[key];
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  *node = std::move(value);
+}
+
+Scene parse_scene(const nlohmann::json& source, const std::string& file,
+                  const std::filesystem::path& base_dir) {
+  JsonReader in(source, file, "");
+  Scene s;
+  s.file = file;
+  s.base_dir = base_dir;
+  s.source = source;
+  s.description = in.string("description", "");
+  s.cloth = read_cloth(in.object("cloth"));
+  s.pins = read_pins(in, s.cloth);
+  s.forces.gravity = in.vec3("gravity", s.forces.gravity);
+  s.dummy = in.has("dummy") ? in.raw("dummy") : nlohmann::json{{"builtin", "dress-form"}};
+  if (!s.dummy.is_null() && !s.dummy.is_object())
+    throw in.error("dummy", "expected an object or null");
+  if (in.has("collision")) s.forces.collision = read_collision(in.object("collision"));
+  s.integrator = in.raw("integrator");
+  if (!s.integrator.is_object()) throw in.error("integrator", "expected an object");
+  s.duration = in.non_negative("duration", in.number("duration"));
+  if (in.has("input")) {
+    s.input = in.raw("input");
+    if (!s.input.is_object()) throw in.error("input", "expected an object");
+  }
+  if (in.has("manipulation"))
+    s.manipulation = read_manipulation(in.object("manipulation"), s.cloth);
+  if (in.has("output")) s.output = read_output(in.object("output"));
+  in.finish();
+  return s;
+}
+
+Scene load_scene(const std::string& file, const std::vector<std::string>& overrides) {
+  nlohmann::json source = read_json_file(file);
+  for (const auto& assignment : overrides) apply_override(source, assignment);
+  return parse_scene(source, file, std::filesystem::path(file).parent_path());
+}
+
+}  // namespace drape

@@ -1,0 +1,49 @@
+#pragma once
+// A scene file (docs/model.md section 9): the problem data of one run. Solver options (`integrator`) and the hand
+// input (`input`) are kept as validated JSON here and read by their own layers, so that core
+// knows nothing of integrators.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/model/cloth.hpp"
+#include "core/model/cloth_system.hpp"
+#include "core/manipulations/manipulation_params.hpp"
+
+namespace drape {
+
+/// What a run writes besides summary.json and state.csv.
+struct OutputOptions {
+  double energy_interval = 0.01;  ///< time between energy.csv rows [s]; 0 = every step
+  double trace_interval = 0.0;    ///< time between trace.csv frames [s]; 0 = no trace.csv
+  double vtk_interval = 0.0;      ///< time between VTK frames [s]; 0 = no frames
+};
+
+/// One scene: cloth, pins, forces, object, duration, manipulation, input and output.
+struct Scene {
+  std::string file;                ///< the scene file (for messages)
+  std::string description;         ///< what the scene shows (free text)
+  std::filesystem::path base_dir;  ///< relative paths in the scene resolve against this
+  ClothParams cloth;
+  std::vector<GridPoint> pins;
+  ForceParams forces;
+  nlohmann::json dummy;       ///< the `dummy` object, null for no object
+  nlohmann::json integrator;  ///< the `integrator` object
+  nlohmann::json input;       ///< the `input` object, null when absent
+  double duration = 0.0;
+  ManipulationParams manipulation;
+  OutputOptions output;
+  nlohmann::json source;  ///< the whole scene as read, overrides applied
+};
+
+/// Applies one `--set key.path=value` override (value parsed as JSON, else a string).
+void apply_override(nlohmann::json& scene, const std::string& assignment);
+/// Parses and validates a scene; throws InputError naming `file` and the field.
+Scene parse_scene(const nlohmann::json& source, const std::string& file,
+                  const std::filesystem::path& base_dir);
+/// Reads a scene file, applies the overrides in order, and parses it.
+Scene load_scene(const std::string& file, const std::vector<std::string>& overrides = {});
+
+}  // namespace drape

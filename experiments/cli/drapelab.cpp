@@ -1,0 +1,95 @@
+// drapelab: the command line of the testbed (docs/model.md section 9).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <iostream>
+
+#include "core/scene/input_error.hpp"
+#include "core/input/recording.hpp"
+#include "core/scene/scene.hpp"
+#include "experiments/cli/experiment_cli.hpp"
+#include "experiments/cli/run_stats.hpp"
+#include "experiments/run/run_scene.hpp"
+#include "integrators/interface/registry.hpp"
+
+namespace {
+
+int run_command(const std::string& scene_file, const std::string& out_dir,
+                const std::vector<std::string>& overrides, bool quiet) {
+  const drape::Scene scene = drape::load_scene(scene_file, overrides);
+  const drape::RunOutcome outcome = drape::run_scene(scene, out_dir);
+  if (outcome.status != "ok")
+    std::cerr << fmt::format("drapelab: {}: {} at t = {:.6g} s: {}\n", scene_file, outcome.status,
+                             outcome.summary.value("time", 0.0), outcome.reason);
+  if (!quiet)
+    fmt::print("drapelab run {} -> {}\n{}", scene_file, out_dir,
+               drape::format_run_stats(outcome.summary));
+  return outcome.exit_code;
+}
+
+int list_integrators() {
+  fmt::print("{:<18} {:<9} {:>5} {:>8}  {}\n", "integrator", "kind", "order", "adaptive",
+             "description");
+  for (const auto& info : drape::integrators())
+    fmt::print("{:<18} {:<9} {:>5} {:>8}  {}\n", info.name, info.kind, info.order,
+               info.adaptive ? "yes" : "no", info.description);
+  const auto tables = drape::integrator_tables();
+  if (!tables.empty()) {
+    fmt::print("\n{:<18} {:<36} {:>5} {:>8} {:>6}\n", "integrator", "table", "order",
+               "embedded", "stages");
+    for (const auto& t : tables)
+      fmt::print("{:<18} {:<36} {:>5} {:>8} {:>6}\n", t.integrator, t.name, t.order,
+                 t.embedded_order, t.stages);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"drapelab: a numerical testbed for virtual draping"};
+  app.require_subcommand(1);
+
+  std::string scene_file, out_dir;
+  std::vector<std::string> overrides;
+  auto* run = app.add_subcommand("run", "run one scene and write summary.json, energy.csv, state.csv");
+  run->add_option("scene", scene_file, "scene JSON file")->required();
+  run->add_option("--out", out_dir, "output folder")->required();
+  run->add_option("--set", overrides, "override a scene value: key.path=value (JSON or string)")
+      ->take_all();
+  bool quiet = false;
+  run->add_flag("--quiet,-q", quiet, "print nothing on success (the stats block is summary.json)");
+
+  app.add_subcommand("integrators", "list integrators and ARKODE tables with their orders");
+
+  std::string convert_in, convert_out;
+  auto* convert = app.add_subcommand(
+      "convert", "convert a hand recording (Kinect v2 CSV, NTU .skeleton, drapelab) to drapelab JSON Lines");
+  convert->add_option("in", convert_in, "recording to read")->required();
+  convert->add_option("out", convert_out, "drapelab recording (.jsonl) to write")->required();
+
+  const drape::ExperimentCommands experiment_commands(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : drape::exit_input;
+  }
+
+  try {
+    if (run->parsed()) return run_command(scene_file, out_dir, overrides, quiet);
+    if (convert->parsed()) {
+      drape::convert_recording(convert_in, convert_out);
+      return drape::exit_ok;
+    }
+    if (const int code = experiment_commands.dispatch(); code >= 0) return code;
+    return list_integrators();
+  } catch (const drape::InputError& e) {
+    std::cerr << "drapelab: error: " << e.what() << "\n";
+    return drape::exit_input;
+  } catch (const std::exception& e) {
+    std::cerr << "drapelab: failed: " << e.what() << "\n";
+    return drape::exit_failure;
+  }
+}

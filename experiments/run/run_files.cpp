@@ -1,0 +1,46 @@
+#include "experiments/run/run_files.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace drape {
+
+std::ofstream open_for_writing(const std::filesystem::path& file) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+  return out;
+}
+
+void write_state_csv(const std::filesystem::path& file, const ClothSystem& system,
+                     const Eigen::VectorXd& y) {
+  std::ofstream out = open_for_writing(file);
+  out << "index,row,col,x,y,z,vx,vy,vz,fixed\n";
+  const Cloth& cloth = system.cloth();
+  const Eigen::Index n3 = 3 * system.num_particles();
+  for (int i = 0; i < system.num_particles(); ++i) {
+    const Vec3 x = y.segment<3>(3 * i);
+    const Vec3 v = y.segment<3>(n3 + 3 * i);
+    out << fmt::format("{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", i,
+                       cloth.row_of(i), cloth.col_of(i), x.x(), x.y(), x.z(), v.x(), v.y(),
+                       v.z(), system.constraints().is_fixed(i) ? 1 : 0);
+  }
+}
+
+void write_dummy_csv(const std::filesystem::path& file, const Dummy& dummy) {
+  std::ofstream out = open_for_writing(file);
+  out << "index,section,point,x,y,z,nx,ny,nz\n";
+  for (int o = 0; o < dummy.size(); ++o) {
+    const Vec3 p = dummy.position(o), n = dummy.normal(o);
+    out << fmt::format("{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", o,
+                       o / dummy.points(), o % dummy.points(), p.x(), p.y(), p.z(), n.x(), n.y(),
+                       n.z());
+  }
+}
+
+void write_json(const std::filesystem::path& file, const nlohmann::json& value) {
+  std::ofstream out = open_for_writing(file);
+  out << value.dump(2) << "\n";
+}
+
+}  // namespace drape

@@ -1,0 +1,87 @@
+#include "experiments/run/run_scene.hpp"
+
+#include <optional>
+
+#include "experiments/run/frame_recorder.hpp"
+#include "experiments/run/run_files.hpp"
+#include "experiments/run/scene_simulation.hpp"
+#include "experiments/run/series_writers.hpp"
+
+namespace drape {
+
+namespace {
+
+nlohmann::json events_json(const Manipulator& manipulator, const Cloth& cloth) {
+  nlohmann::json events = nlohmann::json::array();
+  for (const ManipulationEvent& e : manipulator.events()) events.push_back(e.to_json(cloth));
+  return events;
+}
+
+nlohmann::json run_summary(const SceneSimulation& run, const EnergyWriter& energy) {
+  const Simulation& simulation = run.simulation();
+  const Integrator& integrator = simulation.integrator();
+  const IntegratorCounters& counters = integrator.counters();
+  const ClothSystem& system = run.system();
+  const IntegratorOptions& options = run.options();
+  const double e0 = energy.initial().total();
+  nlohmann::json summary = {
+      {"status", simulation.status().status},
+      {"integrator", options.name},
+      {"table", options.table},
+      {"dt", options.dt},
+      {"adaptive", options.adaptive},
+      {"steps", counters.steps},
+      {"step_mean", counters.steps > 0 ? integrator.time() / static_cast<double>(counters.steps) : 0.0},
+      {"step_min", simulation.min_step()},
+      {"step_max", simulation.max_step()},
+      {"sim_time", integrator.time()},
+      {"duration", run.scene().duration},
+      {"wall_seconds", simulation.wall_seconds()},
+      {"rhs_evals", counters.rhs_evals},
+      {"counters", counters.to_json()},
+      {"particles", system.num_particles()},
+      {"springs", system.cloth().springs.size()},
+      {"object_particles", system.dummy() ? system.dummy()->size() : 0},
+      {"energy_initial", e0},
+      {"energy_final", energy.last().total()},
+      {"energy_drift_max_abs", energy.drift_max_abs()},
+      {"energy_drift_max_rel", energy.drift_max_abs() / std::max(std::abs(e0), 1e-300)},
+      {"events", events_json(simulation.manipulator(), system.cloth())},
+      {"integrator_options", to_json(options)},
+      {"scene", run.scene().source},
+  };
+  if (simulation.status().status != "ok") {
+    summary["reason"] = simulation.status().reason;
+    summary["time"] = integrator.time();
+  }
+  return summary;
+}
+
+}  // namespace
+
+RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
+  SceneSimulation run(scene);
+  Simulation& simulation = run.simulation();
+  const ClothSystem& system = run.system();
+
+  std::filesystem::create_directories(out_dir);
+  if (system.dummy()) write_dummy_csv(out_dir / "dummy.csv", *system.dummy());
+  EnergyWriter energy(out_dir / "energy.csv", scene.output.energy_interval, scene.duration);
+  simulation.add_observer(energy);
+  std::optional<HandsWriter> hands;
+  if (run.has_input()) {
+    hands.emplace(out_dir / "hands.csv", scene.output.energy_interval, scene.duration);
+    simulation.add_observer(*hands);
+  }
+  FrameRecorder frames(scene.output, out_dir, system);
+  simulation.add_observer(frames);
+
+  const RunStatus& status = simulation.run();
+  nlohmann::json summary = run_summary(run, energy);
+  if (status.status == "ok") write_state_csv(out_dir / "state.csv", system, simulation.state());
+  write_json(out_dir / "summary.json", summary);
+  const int code = status.status == "ok" ? exit_ok : exit_diverged;
+  return {status.status, status.reason, code, std::move(summary)};
+}
+
+}  // namespace drape

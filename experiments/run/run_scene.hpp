@@ -1,0 +1,27 @@
+#pragma once
+// Runs one scene: builds the model, steps it with the chosen integrator, applies the events
+// between steps, watches for divergence, and writes the run's files.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/scene/scene.hpp"
+
+namespace drape {
+
+/// Exit statuses of `drapelab` (docs/model.md section 9).
+enum ExitCode : int { exit_ok = 0, exit_failure = 1, exit_input = 2, exit_diverged = 3 };
+
+/// How a run ended: `ok`, `diverged` or `failed` (a solver could not take a step).
+struct RunOutcome {
+  std::string status;
+  std::string reason;
+  int exit_code = exit_ok;
+  nlohmann::json summary;
+};
+
+/// Runs the scene and writes summary.json, energy.csv and state.csv into out_dir.
+/// Throws InputError for invalid input found while building the model.
+RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir);
+
+}  // namespace drape

@@ -1,0 +1,33 @@
+#include "experiments/run/scene_simulation.hpp"
+
+#include "core/dummy/dummy_sources.hpp"
+#include "integrators/interface/registry.hpp"
+
+namespace drape {
+
+SceneSimulation::SceneSimulation(const Scene& scene)
+    : m_scene(scene),
+      m_options(read_integrator_options(scene.integrator, scene.file, "integrator")) {
+  std::shared_ptr<const Dummy> dummy;
+  if (!scene.dummy.is_null())
+    dummy = std::make_shared<const Dummy>(make_dummy(scene.dummy, scene.file, "dummy", scene.base_dir));
+  m_system = std::make_unique<ClothSystem>(build_cloth(scene.cloth), dummy, scene.forces);
+  for (const GridPoint& pin : scene.pins) {
+    const int i = m_system->cloth().index(pin.row, pin.col);
+    m_system->constraints().fix_at(i, m_system->cloth().rest_positions.segment<3>(3 * i));
+  }
+  if (!scene.input.is_null())
+    m_input = load_hand_input(scene.input, scene.file, "input", scene.base_dir);
+  m_manipulator = std::make_unique<Manipulator>(*m_system, m_input ? &m_input->track : nullptr,
+                                                scene.manipulation);
+  m_integrator = make_integrator(m_options, *m_system);
+  SimulationSettings settings;
+  settings.duration = scene.duration;
+  settings.max_steps = m_options.max_steps;
+  settings.adaptive = m_options.adaptive;
+  settings.dt = m_options.dt;
+  m_simulation = std::make_unique<Simulation>(*m_system, *m_manipulator, *m_integrator, settings,
+                                              m_system->initial_state(0.0));
+}
+
+}  // namespace drape

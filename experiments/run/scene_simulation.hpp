@@ -1,0 +1,37 @@
+#pragma once
+// A scene turned into a running simulation: the model, the dummy, the hand input, the
+// manipulator and the integrator it names, built once and owned together.
+#include <memory>
+#include <optional>
+
+#include "core/input/input_config.hpp"
+#include "core/scene/scene.hpp"
+#include "experiments/run/simulation.hpp"
+#include "integrators/interface/integrator_options.hpp"
+
+namespace drape {
+
+/// Everything one scene runs with. Throws InputError (naming the scene file and the field) for
+/// invalid input found while building.
+class SceneSimulation {
+ public:
+  explicit SceneSimulation(const Scene& scene);
+
+  Simulation& simulation() { return *m_simulation; }
+  const Simulation& simulation() const { return *m_simulation; }
+  const Scene& scene() const { return m_scene; }
+  const IntegratorOptions& options() const { return m_options; }
+  const ClothSystem& system() const { return *m_system; }
+  bool has_input() const { return m_input.has_value(); }
+
+ private:
+  Scene m_scene;
+  IntegratorOptions m_options;
+  std::unique_ptr<ClothSystem> m_system;
+  std::optional<HandInput> m_input;
+  std::unique_ptr<Manipulator> m_manipulator;
+  std::unique_ptr<Integrator> m_integrator;
+  std::unique_ptr<Simulation> m_simulation;
+};
+
+}  // namespace drape

@@ -1,0 +1,63 @@
+#pragma once
+// The time series a run writes at its output times (docs/outputs.md): energy.csv and hands.csv.
+// Rows are written at step ends, at the first step end at or after each multiple of
+// output.energy_interval, with the step's exact time; they never change a step.
+#include <filesystem>
+#include <fstream>
+
+#include "experiments/run/simulation.hpp"
+
+namespace drape {
+
+/// Multiples of an interval, each passed once: due(t) is true at the first time at or after the
+/// next multiple not yet passed, always with interval 0, and at the end of the run.
+class OutputClock {
+ public:
+  OutputClock(double interval, double duration);
+  bool due(const Simulation& simulation);
+
+ private:
+  double m_interval;
+  double m_tolerance;
+  long m_ticks = 0;  // output times are multiples of the interval, not running sums
+  double m_next;
+};
+
+/// energy.csv: `t,kinetic,spring,gravity,collision,total` at t = 0 and at the output times,
+/// and the drift of the total over those rows.
+class EnergyWriter : public SimulationObserver {
+ public:
+  EnergyWriter(const std::filesystem::path& file, double interval, double duration);
+  void on_start(const Simulation& simulation) override;
+  void on_step(const Simulation& simulation, bool event) override;
+
+  const EnergyBreakdown& initial() const { return m_initial; }
+  /// The energy of the last row written.
+  const EnergyBreakdown& last() const { return m_last; }
+  /// max |E(t) - E(0)| over the rows written [J].
+  double drift_max_abs() const { return m_drift_max_abs; }
+
+ private:
+  void write(const Simulation& simulation);
+
+  std::ofstream m_out;
+  OutputClock m_clock;
+  EnergyBreakdown m_initial, m_last;
+  double m_drift_max_abs = 0.0;
+};
+
+/// hands.csv: `t,hand,available,x,y,z,candidate,distance,held` at the output times.
+class HandsWriter : public SimulationObserver {
+ public:
+  HandsWriter(const std::filesystem::path& file, double interval, double duration);
+  void on_start(const Simulation& simulation) override;
+  void on_step(const Simulation& simulation, bool event) override;
+
+ private:
+  void write(const Simulation& simulation);
+
+  std::ofstream m_out;
+  OutputClock m_clock;
+};
+
+}  // namespace drape

@@ -1,0 +1,127 @@
+#include "experiments/run/simulation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace drape {
+
+namespace {
+
+// Times within this of the end count as the end (fixed steps accumulate round-off).
+double end_tolerance(double duration) { return 1e-12 * std::max(1.0, duration); }
+
+}  // namespace
+
+Simulation::Simulation(ClothSystem& system, Manipulator& manipulator, Integrator& integrator,
+                       const SimulationSettings& settings, Eigen::VectorXd y0)
+    : m_system(system),
+      m_manipulator(manipulator),
+      m_integrator(integrator),
+      m_settings(settings),
+      m_divergence(system.params().gravity.norm(), settings.duration) {
+  const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(system.num_particles());
+  system.project(0.0, y0.head(n3), y0.tail(n3));
+  if (auto changed = manipulator.update(0.0, y0)) y0 = std::move(*changed);
+  integrator.reset(0.0, y0);
+  m_divergence.account_for(system, energy_of(system, y0));
+}
+
+void Simulation::add_observer(SimulationObserver& observer) {
+  m_observers.push_back(&observer);
+  m_keep_step_ends = m_keep_step_ends || observer.interpolates();
+}
+
+bool Simulation::advance(double t_until) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  if (!m_started) {
+    m_started = true;
+    for (SimulationObserver* o : m_observers) o->on_start(*this);
+  }
+  const double eps = end_tolerance(m_settings.duration);
+  const double target = std::min(t_until, m_settings.duration);
+  while (!m_status.ended() && m_t < target - eps) take_step();
+  if (!m_status.ended() && at_end()) end("ok", "");
+  m_wall_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return !m_status.ended();
+}
+
+const RunStatus& Simulation::run() {
+  advance(m_settings.duration);
+  return m_status;
+}
+
+bool Simulation::at_end() const { return m_t >= m_settings.duration - end_tolerance(m_settings.duration); }
+
+double Simulation::next_landing_time() const {
+  const double duration = m_settings.duration;
+  double t_stop = std::min(duration, m_manipulator.next_key_time(m_t));
+  if (duration - t_stop <= end_tolerance(duration)) t_stop = duration;
+  const double clock = m_settings.time_grid;
+  if (m_settings.adaptive || clock <= 0.0) return t_stop;
+  // The clock tick a full step reaches within round-off, if any (SimulationSettings).
+  const double reach = m_t + m_settings.dt;
+  const double tolerance = 1e-9 * m_settings.dt;
+  const double k = std::floor(reach / clock);
+  for (const double tick : {k * clock, (k + 1.0) * clock})
+    if (tick > m_t && tick < t_stop && std::abs(tick - reach) <= tolerance) return tick;
+  return t_stop;
+}
+
+void Simulation::take_step() {
+  if (m_integrator.counters().steps >= m_settings.max_steps) {
+    end("failed", fmt::format("reached integrator.max_steps = {}", m_settings.max_steps));
+    return;
+  }
+  const double t_stop = next_landing_time();
+  m_t0 = m_t;
+  if (m_keep_step_ends) m_y0 = m_integrator.state();
+  try {
+    m_t = m_integrator.step(t_stop);
+  } catch (const IntegratorFailure& failure) {
+    end("failed", failure.flag() + ": " + failure.what());
+    return;
+  }
+  const double h = m_t - m_t0;
+  m_min_step = m_integrator.counters().steps == 1 ? h : std::min(m_min_step, h);
+  m_max_step = std::max(m_max_step, h);
+  const std::string why = m_divergence.reason(m_system, m_t, m_integrator.state());
+  if (!why.empty()) {
+    end("diverged", why);
+    return;
+  }
+  if (m_keep_step_ends) m_y1 = m_integrator.state();
+  const auto changed = m_manipulator.update(m_t, m_integrator.state());
+  if (changed) {
+    m_integrator.reset(m_t, *changed);
+    m_divergence.account_for(m_system, energy_of(m_system, *changed));
+  }
+  for (SimulationObserver* o : m_observers) o->on_step(*this, changed.has_value());
+}
+
+void Simulation::end(std::string status, std::string reason) {
+  m_status = {std::move(status), std::move(reason)};
+  for (SimulationObserver* o : m_observers) o->on_end(*this);
+}
+
+Eigen::VectorXd Simulation::interpolate(double t) const {
+  const double h = m_t - m_t0;
+  if (!m_keep_step_ends || h <= 0.0) return m_integrator.state();
+  const double s = std::clamp((t - m_t0) / h, 0.0, 1.0);
+  const double s2 = s * s, s3 = s2 * s;
+  // Cubic Hermite basis on [0, 1] and its derivative (positions from x and h v at both ends).
+  const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2,
+               h11 = s3 - s2;
+  const double d00 = 6 * s2 - 6 * s, d10 = 3 * s2 - 4 * s + 1, d01 = -d00, d11 = 3 * s2 - 2 * s;
+  const Eigen::Index n3 = m_y0.size() / 2;
+  const auto x0 = m_y0.head(n3), v0 = m_y0.tail(n3), x1 = m_y1.head(n3), v1 = m_y1.tail(n3);
+  Eigen::VectorXd y(m_y0.size());
+  y.head(n3) = h00 * x0 + (h10 * h) * v0 + h01 * x1 + (h11 * h) * v1;
+  y.tail(n3) = (d00 / h) * x0 + d10 * v0 + (d01 / h) * x1 + d11 * v1;
+  return y;
+}
+
+}  // namespace drape

@@ -1,0 +1,68 @@
+#include "experiments/run/vtk_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <stdexcept>
+
+#include "core/dummy/dummy.hpp"
+
+namespace drape {
+
+namespace {
+
+std::ofstream open_vtk(const std::filesystem::path& file, const std::string& title) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+  out << "# vtk DataFile Version 3.0\n" << title << "\nASCII\nDATASET POLYDATA\n";
+  return out;
+}
+
+}  // namespace
+
+void write_cloth_vtk(const std::filesystem::path& file, const ClothSystem& system,
+                     const Eigen::VectorXd& y, double t) {
+  const Cloth& cloth = system.cloth();
+  const int n = system.num_particles();
+  const int rows = cloth.params.rows, cols = cloth.params.cols;
+  std::ofstream out = open_vtk(file, fmt::format("drapelab cloth t={:.17g}", t));
+  // ParaView takes a frame's time from this field, so uneven frame times still animate right.
+  out << fmt::format("FIELD FieldData 1\nTIME 1 1 double\n{:.17g}\n", t);
+  out << fmt::format("POINTS {} double\n", n);
+  for (int i = 0; i < n; ++i)
+    out << fmt::format("{:.17g} {:.17g} {:.17g}\n", y[3 * i], y[3 * i + 1], y[3 * i + 2]);
+  const int quads = std::max(0, rows - 1) * std::max(0, cols - 1);
+  out << fmt::format("POLYGONS {} {}\n", quads, 5 * quads);
+  for (int r = 0; r + 1 < rows; ++r)
+    for (int c = 0; c + 1 < cols; ++c)
+      out << fmt::format("4 {} {} {} {}\n", cloth.index(r, c), cloth.index(r, c + 1),
+                         cloth.index(r + 1, c + 1), cloth.index(r + 1, c));
+  out << fmt::format("POINT_DATA {}\nVECTORS velocity double\n", n);
+  const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(n);
+  for (int i = 0; i < n; ++i)
+    out << fmt::format("{:.17g} {:.17g} {:.17g}\n", y[n3 + 3 * i], y[n3 + 3 * i + 1],
+                       y[n3 + 3 * i + 2]);
+  out << "SCALARS fixed int 1\nLOOKUP_TABLE default\n";
+  for (int i = 0; i < n; ++i) out << (system.constraints().is_fixed(i) ? 1 : 0) << "\n";
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+void write_dummy_vtk(const std::filesystem::path& file, const Dummy& dummy) {
+  std::ofstream out = open_vtk(file, "drapelab object particles");
+  const int n = dummy.size();
+  out << fmt::format("POINTS {} double\n", n);
+  for (int o = 0; o < n; ++o) {
+    const Vec3 p = dummy.position(o);
+    out << fmt::format("{:.17g} {:.17g} {:.17g}\n", p.x(), p.y(), p.z());
+  }
+  out << fmt::format("VERTICES {} {}\n", n, 2 * n);
+  for (int o = 0; o < n; ++o) out << "1 " << o << "\n";
+  out << fmt::format("POINT_DATA {}\nNORMALS normal double\n", n);
+  for (int o = 0; o < n; ++o) {
+    const Vec3 v = dummy.normal(o);
+    out << fmt::format("{:.17g} {:.17g} {:.17g}\n", v.x(), v.y(), v.z());
+  }
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+}  // namespace drape

@@ -1,0 +1,322 @@
+#include "experiments/sweep/experiment_runner.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <mutex>
+#include <thread>
+
+#include "core/scene/input_error.hpp"
+#include "core/scene/json_reader.hpp"
+#include "core/scene/scene.hpp"
+#include "experiments/sweep/results_table.hpp"
+#include "experiments/run/run_scene.hpp"
+#include "integrators/interface/integrator_options.hpp"
+
+namespace drape {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A one-line bar on stderr, redrawn as runs finish; silent when disabled.
+class ProgressBar {
+ public:
+  ProgressBar(int total, bool enabled)
+      : m_total(total), m_enabled(enabled), m_start(std::chrono::steady_clock::now()) {}
+
+  void update(const ExperimentTally& tally) {
+    if (!m_enabled) return;
+    const int done = tally.skipped + tally.ok + tally.unstable + tally.errors;
+    const int executed = done - tally.skipped;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    const int width = 28;
+    const int filled = m_total > 0 ? width * done / m_total : width;
+    std::string eta = "--:--";
+    if (executed > 0) eta = clock(elapsed / executed * (m_total - done));
+    std::cerr << fmt::format("\r[{}{}] {}/{}  ok {}  unstable {}  error {}  {} elapsed  ETA {}  ",
+                             std::string(filled, '#'), std::string(width - filled, '-'), done,
+                             m_total, tally.ok + tally.skipped, tally.unstable, tally.errors,
+                             clock(elapsed), eta)
+              << std::flush;
+  }
+
+  void finish() {
+    if (m_enabled) std::cerr << "\n";
+  }
+
+ private:
+  static std::string clock(double seconds) {
+    const long s = std::lround(seconds);
+    return s >= 3600 ? fmt::format("{}:{:02d}:{:02d}", s / 3600, s / 60 % 60, s % 60)
+                     : fmt::format("{}:{:02d}", s / 60, s % 60);
+  }
+  int m_total;
+  bool m_enabled;
+  std::chrono::steady_clock::time_point m_start;
+};
+
+// What a finished folder must match to count as this run: its definition, not its place.
+nlohmann::json run_identity(const RunSpec& run) {
+  nlohmann::json j = run.to_json();
+  j.erase("index");
+  j.erase("reference");
+  return j;
+}
+
+std::optional<nlohmann::json> read_json_if_present(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) return std::nullopt;
+  nlohmann::json value = nlohmann::json::parse(in, nullptr, false);
+  if (value.is_discarded()) return std::nullopt;
+  return value;
+}
+
+// The row of a run finished earlier, or nothing when it must run (again).
+std::optional<nlohmann::json> finished_row(const RunSpec& run, const fs::path& dir) {
+  const auto spec = read_json_if_present(dir / "run.json");
+  if (!spec || run_identity(run) != *spec) return std::nullopt;
+  auto row = read_json_if_present(dir / "result.json");
+  if (!row || row->value("status", "error") == "error") return std::nullopt;
+  (*row)["index"] = run.index;
+  (*row)["reference"] = run.reference;
+  return row;
+}
+
+std::vector<std::string> with(std::vector<std::string> assignments, const std::string& key,
+                              double value) {
+  assignments.push_back(key + "=" + nlohmann::json(value).dump());
+  return assignments;
+}
+
+// Largest stable value of one parameter, by bisection (geometric: step sizes span decades).
+nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir) {
+  const BisectSpec& b = *run.bisect;
+  nlohmann::json probes = nlohmann::json::array();
+  nlohmann::json last_stable_summary;
+  double wall = 0.0;
+  auto probe = [&](double value) {
+    const Scene scene = load_scene(run.scene_path.string(), with(run.assignments(), b.parameter, value));
+    const RunOutcome o = run_scene(scene, dir / "probes" / fmt::format("{:02d}", probes.size()));
+    const double drift = o.summary.value("energy_drift_max_rel", 0.0);
+    const bool stable = o.status == "ok" && (!b.max_drift || drift <= *b.max_drift);
+    wall += o.summary.value("wall_seconds", 0.0);
+    probes.push_back({{"value", value}, {"status", o.status}, {"stable", stable},
+                      {"energy_drift_max_rel", drift}});
+    if (stable) last_stable_summary = o.summary;
+    return stable;
+  };
+  double lo = b.low, hi = b.high;
+  std::string status = "ok", reason;
+  nlohmann::json stable_value, unstable_value;
+  if (!probe(lo)) {
+    status = "failed";
+    reason = fmt::format("bisect.low = {} is already unstable", lo);
+    unstable_value = lo;
+  } else if (probe(hi)) {
+    reason = fmt::format("bisect.high = {} is still stable", hi);
+    stable_value = hi;
+  } else {
+    for (int s = 0; s < b.steps; ++s) {
+      const double mid = std::sqrt(lo * hi);
+      (probe(mid) ? lo : hi) = mid;
+    }
+    stable_value = lo;
+    unstable_value = hi;
+  }
+  nlohmann::json summary = last_stable_summary.is_null() ? nlohmann::json::object() : last_stable_summary;
+  summary["status"] = status;
+  summary["reason"] = reason;
+  summary["wall_seconds"] = wall;
+  write_json_atomic(dir / "bisect.json", {{"parameter", b.parameter}, {"stable_value", stable_value},
+                                          {"unstable_value", unstable_value}, {"probes", probes}});
+  nlohmann::json row = result_row(run, summary);
+  row["bisect_parameter"] = b.parameter;
+  row["stable_value"] = stable_value;
+  row["unstable_value"] = unstable_value;
+  row["probes"] = probes.size();
+  return row;
+}
+
+// Runs one plan entry in its own folder; never throws (a failure is the run's status).
+nlohmann::json execute_run(const RunSpec& run, const fs::path& dir, bool& skipped) {
+  skipped = false;
+  if (auto row = finished_row(run, dir)) {
+    skipped = true;
+    return *row;
+  }
+  nlohmann::json row;
+  try {
+    fs::remove_all(dir);  // leftovers of an interrupted run would mix with the new files
+    fs::create_directories(dir);
+    write_json_atomic(dir / "run.json", run_identity(run));
+    if (run.bisect) {
+      row = run_bisect(run, dir);
+    } else {
+      const Scene scene = load_scene(run.scene_path.string(), run.assignments());
+      row = result_row(run, run_scene(scene, dir).summary);
+    }
+  } catch (const std::exception& e) {
+    row = error_row(run, e.what());
+  }
+  try {
+    write_json_atomic(dir / "result.json", row);
+  } catch (const std::exception& e) {
+    row = error_row(run, e.what());
+  }
+  return row;
+}
+
+// Bad overrides would fail every run alike: find them before spending any time.
+void validate_runs(const std::vector<RunSpec>& runs) {
+  for (const RunSpec& run : runs) {
+    auto assignments = run.assignments();
+    if (run.bisect) assignments = with(assignments, run.bisect->parameter, run.bisect->low);
+    const Scene scene = load_scene(run.scene_path.string(), assignments);
+    read_integrator_options(scene.integrator, scene.file, "integrator");
+  }
+}
+
+std::vector<std::string> parameter_keys(const std::vector<RunSpec>& plan) {
+  std::vector<std::string> keys;
+  for (const RunSpec& run : plan)
+    for (const auto& [key, value] : run.parameters)
+      if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+  return keys;
+}
+
+nlohmann::json experiment_header(const Experiment& e, const std::vector<RunSpec>& plan) {
+  nlohmann::json runs = nlohmann::json::array();
+  for (const RunSpec& run : plan) runs.push_back(run.to_json());
+  return {{"name", e.name},           {"question", e.question},
+          {"file", e.file},           {"metrics", e.metrics},
+          {"parameters", parameter_keys(plan)}, {"plan_size", plan.size()},
+          {"experiment", e.source},   {"plan", runs}};
+}
+
+void write_table(const fs::path& stem, const nlohmann::json& header,
+                 const std::vector<nlohmann::json>& rows, const std::string& shard) {
+  const auto parameters = header["parameters"].get<std::vector<std::string>>();
+  const auto columns = result_columns(parameters, rows);
+  nlohmann::json doc = {{"name", header["name"]},       {"question", header["question"]},
+                        {"metrics", header["metrics"]}, {"parameters", parameters},
+                        {"plan_size", header["plan_size"]},
+                        {"shard", shard.empty() ? nlohmann::json() : nlohmann::json(shard)},
+                        {"columns", columns},           {"runs", rows}};
+  write_json_atomic(stem.string() + ".json", doc);
+  write_results_csv(stem.string() + ".csv", columns, rows);
+}
+
+nlohmann::json read_header(const fs::path& dir) {
+  const fs::path file = dir / "experiment.json";
+  auto header = read_json_if_present(file);
+  if (!header || !header->contains("plan"))
+    throw InputError(file.string(), "", "not an experiment output folder (no plan)");
+  return *header;
+}
+
+std::vector<std::string> plan_ids(const nlohmann::json& header) {
+  std::vector<std::string> ids;
+  for (const auto& run : header["plan"]) ids.push_back(run["id"].get<std::string>());
+  return ids;
+}
+
+}  // namespace
+
+ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOptions& options) {
+  const std::vector<RunSpec> plan = expand_runs(experiment);
+  std::vector<const RunSpec*> slice;
+  for (const RunSpec& run : plan)
+    if (!options.shard || options.shard->contains(run.index)) slice.push_back(&run);
+  {
+    std::vector<RunSpec> to_check;
+    for (const RunSpec* run : slice) to_check.push_back(*run);
+    validate_runs(to_check);
+  }
+
+  fs::create_directories(options.out_dir / "runs");
+  const nlohmann::json header = experiment_header(experiment, plan);
+  write_json_atomic(options.out_dir / "experiment.json", header);
+
+  ExperimentTally tally;
+  tally.planned = static_cast<int>(slice.size());
+  std::vector<nlohmann::json> rows(slice.size());
+  ProgressBar bar(tally.planned, options.progress);
+  bar.update(tally);
+  std::mutex mutex;
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t k = next++; k < slice.size(); k = next++) {
+      bool skipped = false;
+      nlohmann::json row = execute_run(*slice[k], options.out_dir / "runs" / slice[k]->id, skipped);
+      const std::string status = row.value("status", "error");
+      const std::lock_guard<std::mutex> lock(mutex);
+      if (skipped) ++tally.skipped;
+      else if (status == "ok") ++tally.ok;
+      else if (status == "error") ++tally.errors;
+      else ++tally.unstable;
+      rows[k] = std::move(row);
+      bar.update(tally);
+    }
+  };
+  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t jobs = std::min<std::size_t>(options.jobs > 0 ? options.jobs : hardware,
+                                                 std::max<std::size_t>(1, slice.size()));
+  std::vector<std::thread> pool;
+  for (std::size_t j = 0; j < jobs; ++j) pool.emplace_back(worker);
+  for (auto& thread : pool) thread.join();
+  bar.finish();
+
+  if (options.shard) {
+    fs::create_directories(options.out_dir / "shards");
+    write_table(options.out_dir / "shards" / options.shard->tag(), header, rows,
+                fmt::format("{}/{}", options.shard->index, options.shard->count));
+  } else {
+    write_table(options.out_dir / "results", header, rows, "");
+  }
+  return tally;
+}
+
+std::vector<std::string> merge_results(const fs::path& out_dir, const std::vector<fs::path>& sources) {
+  if (!fs::exists(out_dir / "experiment.json") && !sources.empty()) {
+    fs::create_directories(out_dir);
+    write_json_atomic(out_dir / "experiment.json", read_header(sources.front()));
+  }
+  const nlohmann::json header = read_header(out_dir);
+  const std::vector<std::string> ids = plan_ids(header);
+  for (const fs::path& source : sources) {
+    if (fs::equivalent(source, out_dir)) continue;
+    if (plan_ids(read_header(source)) != ids)
+      throw InputError((source / "experiment.json").string(), "plan",
+                       "is not the plan of " + (out_dir / "experiment.json").string());
+    for (const std::string& id : ids) {
+      const fs::path from = source / "runs" / id, to = out_dir / "runs" / id;
+      if (!fs::exists(from / "result.json") || fs::exists(to / "result.json")) continue;
+      fs::remove_all(to);
+      fs::create_directories(to.parent_path());
+      fs::copy(from, to, fs::copy_options::recursive);
+    }
+  }
+  std::vector<nlohmann::json> rows;
+  std::vector<std::string> missing;
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    auto row = read_json_if_present(out_dir / "runs" / ids[k] / "result.json");
+    if (!row) {
+      missing.push_back(ids[k]);
+      continue;
+    }
+    (*row)["index"] = static_cast<int>(k);
+    (*row)["reference"] = header["plan"][k]["reference"];
+    rows.push_back(std::move(*row));
+  }
+  write_table(out_dir / "results", header, rows, "");
+  return missing;
+}
+
+}  // namespace drape

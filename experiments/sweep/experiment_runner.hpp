@@ -1,0 +1,40 @@
+#pragma once
+// Runs the plan of an experiment on a pool of threads, resumes finished runs, writes the results
+// table; merges the runs of shards that ran elsewhere (docs/experiments.md).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "experiments/sweep/experiment.hpp"
+
+namespace drape {
+
+/// How to run an experiment.
+struct ExperimentOptions {
+  std::filesystem::path out_dir;
+  int jobs = 0;                ///< worker threads; 0 = hardware concurrency
+  std::optional<Shard> shard;  ///< run only this slice of the plan
+  bool progress = false;       ///< draw a progress bar on stderr
+};
+
+/// What happened to the runs of one invocation.
+struct ExperimentTally {
+  int planned = 0;   ///< runs in this invocation's slice
+  int skipped = 0;   ///< finished before (resumed)
+  int ok = 0;
+  int unstable = 0;  ///< diverged or failed: a result, not an error
+  int errors = 0;    ///< could not run (bad input found late, files, exceptions)
+};
+
+/// Runs the experiment's plan (or one shard of it) into options.out_dir and writes the table:
+/// results.{csv,json} for a whole plan, shards/K-of-N.{csv,json} for a shard.
+/// Throws InputError when a run's scene and overrides are invalid (checked before any run).
+ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOptions& options);
+
+/// Copies the runs of `sources` (other output folders of the same experiment) into out_dir and
+/// writes out_dir/results.{csv,json} from every finished run; returns the ids still missing.
+std::vector<std::string> merge_results(const std::filesystem::path& out_dir,
+                                       const std::vector<std::filesystem::path>& sources);
+
+}  // namespace drape

@@ -1,0 +1,147 @@
+#include "experiments/sweep/results_table.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <unistd.h>
+
+namespace drape {
+
+namespace {
+
+// Metric columns in the order a reader expects them; anything else follows, sorted.
+const std::vector<std::string>& metric_columns() {
+  static const std::vector<std::string> names = {
+      "integrator", "table", "dt", "adaptive", "steps", "rhs_evals", "wall_seconds", "sim_time",
+      "duration", "time", "particles", "springs", "object_particles", "energy_initial",
+      "energy_final", "energy_drift_max_abs", "energy_drift_max_rel", "energy_drift_final_rel",
+      "events", "hold_count", "release_count", "map_count", "ignored_count", "attach_count",
+      "attach_error_mean", "attach_error_max", "bisect_parameter", "stable_value",
+      "unstable_value", "probes"};
+  return names;
+}
+
+const std::vector<std::string>& identity_columns() {
+  static const std::vector<std::string> names = {"index", "id", "scene", "status", "reason",
+                                                 "is_reference", "reference", "run_dir"};
+  return names;
+}
+
+nlohmann::json identity(const RunSpec& run, const std::string& status) {
+  nlohmann::json row = {{"index", run.index},   {"id", run.id},
+                        {"scene", run.scene},   {"status", status},
+                        {"reason", ""},         {"is_reference", run.is_reference},
+                        {"reference", run.reference}, {"run_dir", "runs/" + run.id}};
+  for (const auto& [key, value] : run.parameters) row[key] = value;
+  return row;
+}
+
+std::string csv_cell(const nlohmann::json& value) {
+  if (value.is_null()) return "";
+  std::string text = value.is_string() ? value.get<std::string>() : value.dump();
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (const char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return quoted + "\"";
+}
+
+}  // namespace
+
+nlohmann::json result_row(const RunSpec& run, const nlohmann::json& summary) {
+  nlohmann::json row = identity(run, summary.value("status", "error"));
+  row["reason"] = summary.value("reason", "");
+  for (const char* key : {"integrator", "table", "dt", "adaptive", "steps", "rhs_evals",
+                          "wall_seconds", "sim_time", "duration", "time", "particles", "springs",
+                          "object_particles", "energy_initial", "energy_final",
+                          "energy_drift_max_abs", "energy_drift_max_rel"})
+    if (summary.contains(key)) row[key] = summary[key];
+  const double e0 = summary.value("energy_initial", 0.0);
+  const double e1 = summary.value("energy_final", 0.0);
+  row["energy_drift_final_rel"] = std::abs(e1 - e0) / std::max(std::abs(e0), 1e-300);
+  if (summary.contains("counters"))
+    for (const auto& item : summary["counters"].items()) row["counters." + item.key()] = item.value();
+
+  int attach = 0, hold = 0, release = 0, map = 0, ignored = 0;
+  double attach_sum = 0.0, attach_max = 0.0;
+  const nlohmann::json events = summary.value("events", nlohmann::json::array());
+  for (const auto& e : events) {
+    const std::string type = e.value("type", "");
+    hold += type == "hold";
+    release += type == "release";
+    map += type == "map";
+    ignored += type == "ignored";
+    if (type == "attach_fixed" && e.contains("attach_error")) {
+      const double err = e["attach_error"].get<double>();
+      ++attach;
+      attach_sum += err;
+      attach_max = std::max(attach_max, err);
+    }
+  }
+  row["events"] = events.size();
+  row["hold_count"] = hold;
+  row["release_count"] = release;
+  row["map_count"] = map;
+  row["ignored_count"] = ignored;
+  row["attach_count"] = attach;
+  row["attach_error_mean"] = attach > 0 ? nlohmann::json(attach_sum / attach) : nlohmann::json();
+  row["attach_error_max"] = attach > 0 ? nlohmann::json(attach_max) : nlohmann::json();
+  return row;
+}
+
+nlohmann::json error_row(const RunSpec& run, const std::string& message) {
+  nlohmann::json row = identity(run, "error");
+  row["reason"] = message;
+  return row;
+}
+
+std::vector<std::string> result_columns(const std::vector<std::string>& parameters,
+                                        const std::vector<nlohmann::json>& rows) {
+  std::vector<std::string> columns = identity_columns();
+  columns.insert(columns.end(), parameters.begin(), parameters.end());
+  std::set<std::string> present;
+  for (const auto& row : rows)
+    for (const auto& item : row.items()) present.insert(item.key());
+  for (const auto& name : metric_columns())
+    if (present.count(name) &&
+        std::find(columns.begin(), columns.end(), name) == columns.end())
+      columns.push_back(name);
+  for (const auto& name : present)
+    if (std::find(columns.begin(), columns.end(), name) == columns.end()) columns.push_back(name);
+  return columns;
+}
+
+void write_results_csv(const std::filesystem::path& file, const std::vector<std::string>& columns,
+                       const std::vector<nlohmann::json>& rows) {
+  // Shards on one shared folder write the same files: each process its own temporary.
+  const std::filesystem::path tmp = fmt::format("{}.tmp.{}", file.string(), ::getpid());
+  {
+    std::ofstream out(tmp);
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+    for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << csv_cell(columns[c]);
+    out << "\n";
+    for (const auto& row : rows) {
+      for (std::size_t c = 0; c < columns.size(); ++c)
+        out << (c ? "," : "") << (row.contains(columns[c]) ? csv_cell(row[columns[c]]) : "");
+      out << "\n";
+    }
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  std::filesystem::rename(tmp, file);
+}
+
+void write_json_atomic(const std::filesystem::path& file, const nlohmann::json& value) {
+  // Shards on one shared folder write the same files: each process its own temporary.
+  const std::filesystem::path tmp = fmt::format("{}.tmp.{}", file.string(), ::getpid());
+  {
+    std::ofstream out(tmp);
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+    out << value.dump(2) << "\n";
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  std::filesystem::rename(tmp, file);
+}
+
+}  // namespace drape

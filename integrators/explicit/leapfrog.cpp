@@ -1,0 +1,35 @@
+#include "integrators/explicit/leapfrog.hpp"
+
+namespace drape {
+
+void Leapfrog::reset(double t, const Eigen::VectorXd& y) {
+  Integrator::reset(t, y);
+  m_acceleration.resize(y.size() / 2);
+  m_have_acceleration = false;
+}
+
+double Leapfrog::step(double t_stop) {
+  const double t_next = fixed_step_end(m_dt, m_t, t_stop);
+  const double h = t_next - m_t;
+  VecMap x = positions(), v = velocities();
+  VecMap a(m_acceleration.data(), m_acceleration.size());
+  if (!m_have_acceleration) {
+    m_system.acceleration(m_t, x, v, a);
+    ++m_counters.rhs_evals;
+  }
+  // Kick to v(n+1/2) and drift to x(n+1) in one pass over the state.
+  const double half_h = 0.5 * h;
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    v[k] += half_h * a[k];
+    x[k] += h * v[k];
+  }
+  m_system.project(t_next, x, v);
+  m_system.acceleration(t_next, x, v, a);
+  ++m_counters.rhs_evals;
+  v += half_h * a;  // v(n+1), synchronised; the next kick continues from here
+  m_system.constraints().project(t_next, x, v);
+  m_have_acceleration = true;
+  return accept_fixed_step(t_next);
+}
+
+}  // namespace drape

@@ -1,0 +1,30 @@
+#pragma once
+#include "integrators/interface/integrator.hpp"
+#include "integrators/interface/integrator_options.hpp"
+#include "integrators/newton/reduced_newton_solver.hpp"
+
+namespace drape {
+
+/// The graphics community's implicit Euler (Baraff and Witkin 1998, "Large steps in cloth
+/// simulation", SIGGRAPH, section 4): one Newton step of backward Euler from (x, v),
+///   (M - h dF/dv - h^2 dF/dx) dv = h (F + h dF/dx v),   x += h (v + dv),   v += dv,
+/// with the definite Jacobian, fixed particles' dv prescribed (filtered out of the solve) and
+/// the 3N system solved by CG preconditioned by a multigrid V-cycle (`pcg-multigrid`, the
+/// default) or by its block diagonal (`pcg-reduced`), both warm-started from the last step's dv
+/// to the relative residual `linear_tolerance` (default 1e-3), or by a sparse LDLT
+/// factorisation (`sparse-direct`). Then the projection of docs/model.md section 5. First order,
+/// unconditionally stable for the linearised problem; one force evaluation and one Jacobian
+/// per step.
+class ImplicitEuler final : public Integrator {
+ public:
+  /// Reads dt, linear_solver, linear_tolerance and max_linear_iters from `options`.
+  ImplicitEuler(ClothSystem& system, const IntegratorOptions& options);
+  double step(double t_stop) override;
+
+ private:
+  double m_dt;
+  ReducedNewtonSolver m_solver;
+  Eigen::VectorXd m_residual, m_increment;
+};
+
+}  // namespace drape

@@ -1,0 +1,104 @@
+#include "integrators/interface/integrator_options.hpp"
+
+#include "core/scene/json_reader.hpp"
+#include "integrators/interface/registry.hpp"
+
+namespace drape {
+
+namespace {
+
+// Keys that only some integrators read: given to another one, they would be ignored without a
+// word, and the run would not be the one its scene describes.
+void reject_unused_keys(const JsonReader& in, const IntegratorOptions& o) {
+  const bool arkode = o.name.rfind("arkode-", 0) == 0;
+  const bool newton = o.name == "arkode-dirk" || o.name == "arkode-imex";
+  const bool linear = newton || o.name == "implicit-euler";
+  const struct {
+    const char* key;
+    bool used;
+    const char* users;
+  } keys[] = {
+      {"rtol", arkode, "the arkode-* integrators"},
+      {"atol", arkode, "the arkode-* integrators"},
+      {"max_dt", o.adaptive, "adaptive runs"},
+      {"max_newton_iters", newton, "arkode-dirk and arkode-imex"},
+      {"max_step_halvings", newton && !o.adaptive,
+       "fixed-step arkode-dirk and arkode-imex (adaptive runs shrink a failed step themselves)"},
+      {"linear_tolerance", linear, "implicit-euler, arkode-dirk and arkode-imex"},
+      {"max_linear_iters", linear, "implicit-euler, arkode-dirk and arkode-imex"},
+  };
+  for (const auto& k : keys)
+    if (!k.used && in.has(k.key))
+      throw in.error(k.key, "not used by this run of '" + o.name + "': only " + k.users +
+                                " read it");
+}
+
+}  // namespace
+
+IntegratorOptions read_integrator_options(const nlohmann::json& object, const std::string& file,
+                                          const std::string& path) {
+  JsonReader in(object, file, path);
+  IntegratorOptions o;
+  o.name = in.string("name");
+  if (!find_integrator(o.name))
+    throw in.error("name", "unknown integrator '" + o.name + "' (see `drapelab integrators`)");
+  o.adaptive = in.boolean("adaptive", o.adaptive);
+  if (o.adaptive && !find_integrator(o.name)->adaptive)
+    throw in.error("adaptive", "integrator '" + o.name + "' has no adaptive steps");
+  o.dt = o.adaptive ? in.number("dt", 0.0) : in.number("dt");
+  if (!o.adaptive || in.has("dt")) in.positive("dt", o.dt);
+  o.table = in.string("table", o.table);
+  o.rtol = in.positive("rtol", in.number("rtol", o.rtol));
+  o.atol = in.positive("atol", in.number("atol", o.atol));
+  o.max_dt = in.non_negative("max_dt", in.number("max_dt", o.max_dt));
+  o.linear_solver = in.string("linear_solver", o.linear_solver);
+  o.max_newton_iters = in.integer("max_newton_iters", o.max_newton_iters);
+  if (o.max_newton_iters < 1) throw in.error("max_newton_iters", "must be at least 1");
+  o.max_step_halvings = in.integer("max_step_halvings", o.max_step_halvings);
+  if (o.max_step_halvings < 0 || o.max_step_halvings > 30)
+    throw in.error("max_step_halvings", "must be between 0 and 30");
+  o.linear_tolerance = in.positive(
+      "linear_tolerance", in.number("linear_tolerance", default_linear_tolerance(o.name)));
+  o.max_linear_iters = in.integer("max_linear_iters", o.max_linear_iters);
+  if (o.max_linear_iters < 1) throw in.error("max_linear_iters", "must be at least 1");
+  o.max_steps = static_cast<long>(in.positive("max_steps", in.number("max_steps", 1e8)));
+  in.finish();
+  reject_unused_keys(in, o);
+  validate_integrator_choice(o, file, path);
+  return o;
+}
+
+std::string linear_solver_of(const IntegratorOptions& options) {
+  if (!options.linear_solver.empty()) return options.linear_solver;
+  // Measured on the draped-cloth benchmark (docs/integrators.md): the multigrid cycle pays for
+  // itself at implicit-euler's large steps (90 -> 9 CG iterations at 1/30 s); ARKODE's adaptive
+  // steps there are microseconds, S is then close to M, and block Jacobi is cheaper.
+  return options.name == "implicit-euler" ? "pcg-multigrid" : "pcg-reduced";
+}
+
+double default_linear_tolerance(const std::string& name) {
+  return name == "implicit-euler" ? 1e-3 : 1e-8;
+}
+
+double linear_tolerance_of(const IntegratorOptions& options) {
+  return options.linear_tolerance > 0.0 ? options.linear_tolerance
+                                        : default_linear_tolerance(options.name);
+}
+
+nlohmann::json to_json(const IntegratorOptions& o) {
+  return {{"name", o.name},
+          {"dt", o.dt},
+          {"adaptive", o.adaptive},
+          {"table", o.table},
+          {"rtol", o.rtol},
+          {"atol", o.atol},
+          {"max_dt", o.max_dt},
+          {"linear_solver", o.linear_solver},
+          {"max_newton_iters", o.max_newton_iters},
+          {"max_step_halvings", o.max_step_halvings},
+          {"linear_tolerance", linear_tolerance_of(o)},
+          {"max_linear_iters", o.max_linear_iters},
+          {"max_steps", o.max_steps}};
+}
+
+}  // namespace drape

@@ -1,0 +1,110 @@
+#include "integrators/interface/registry.hpp"
+
+#include "core/scene/input_error.hpp"
+#include "integrators/arkode/arkode_stepper.hpp"
+#include "integrators/arkode/arkode_tables.hpp"
+#include "integrators/implicit_euler/implicit_euler.hpp"
+#include "integrators/explicit/leapfrog.hpp"
+#include "integrators/newton/reduced_newton_solver.hpp"
+#include "integrators/explicit/symplectic_euler.hpp"
+
+namespace drape {
+
+namespace {
+
+// The ARKODE kind of an integrator name, or nothing for our own integrators.
+std::optional<ArkodeKind> arkode_kind(const std::string& name) {
+  if (name == "arkode-erk") return ArkodeKind::explicit_rk;
+  if (name == "arkode-dirk") return ArkodeKind::diagonally_implicit;
+  if (name == "arkode-imex") return ArkodeKind::imex;
+  return std::nullopt;
+}
+
+const char* integrator_of(ArkodeKind kind) {
+  switch (kind) {
+    case ArkodeKind::explicit_rk: return "arkode-erk";
+    case ArkodeKind::diagonally_implicit: return "arkode-dirk";
+    case ArkodeKind::imex: return "arkode-imex";
+  }
+  return "";
+}
+
+std::string names_of_kind(ArkodeKind kind) {
+  std::string names;
+  for (const auto& table : arkode_tables())
+    if (table.kind == kind) names += (names.empty() ? "" : ", ") + table.name;
+  return names;
+}
+
+}  // namespace
+
+const std::vector<IntegratorInfo>& integrators() {
+  static const std::vector<IntegratorInfo> list = {
+      {"leapfrog", "explicit", 2, false, "the paper's leap-frog (kick-drift-kick form)"},
+      {"symplectic-euler", "explicit", 1, false, "semi-implicit Euler, velocity first"},
+      {"implicit-euler", "implicit", 1, false,
+       "Baraff-Witkin linearised backward Euler, CG or sparse LDLT on the 3N velocity system"},
+      {"arkode-erk", "explicit", 3, true,
+       "ARKODE ARKStep explicit Runge-Kutta, any ERK table (default Bogacki-Shampine 3(2))"},
+      {"arkode-dirk", "implicit", 3, true,
+       "ARKODE ARKStep diagonally implicit Runge-Kutta, any DIRK table (default ARK324L2SA)"},
+      {"arkode-imex", "imex", 3, true,
+       "ARKODE ARKStep IMEX: springs implicit, gravity, air and collision explicit"},
+  };
+  return list;
+}
+
+std::vector<TableInfo> integrator_tables() {
+  std::vector<TableInfo> list;
+  for (const auto& table : arkode_tables()) {
+    const detail::ButcherTableHandle loaded = detail::load_main_table(table);
+    list.push_back({integrator_of(table.kind), table.name, loaded->q, loaded->p, loaded->stages});
+  }
+  return list;
+}
+
+const IntegratorInfo* find_integrator(const std::string& name) {
+  for (const auto& info : integrators())
+    if (info.name == name) return &info;
+  return nullptr;
+}
+
+void validate_integrator_choice(const IntegratorOptions& options, const std::string& file,
+                                const std::string& path) {
+  const std::optional<ArkodeKind> kind = arkode_kind(options.name);
+  if (!kind) {
+    if (!options.table.empty())
+      throw InputError(file, path + ".table",
+                       "integrator '" + options.name + "' takes no Butcher table");
+  } else if (!options.table.empty()) {
+    const ArkodeTable* table = find_arkode_table(options.table, *kind);
+    if (!table)
+      throw InputError(file, path + ".table",
+                       "'" + options.table + "' is not a table of " + options.name +
+                           " (one of: " + names_of_kind(*kind) + ")");
+    if (options.adaptive && detail::load_main_table(*table)->d == nullptr)
+      throw InputError(file, path + ".table",
+                       "'" + options.table + "' has no embedded method: adaptive steps need one");
+  }
+  const IntegratorInfo* info = find_integrator(options.name);
+  if (info && info->kind == "explicit" && !options.linear_solver.empty())
+    throw InputError(file, path + ".linear_solver",
+                     "integrator '" + options.name + "' is explicit: it solves no linear systems");
+  if (!reduced_solve_named(linear_solver_of(options)))
+    throw InputError(file, path + ".linear_solver",
+                     "unknown linear solver '" + options.linear_solver +
+                         "' (one of: " + reduced_solve_names() + ")");
+}
+
+std::unique_ptr<Integrator> make_integrator(const IntegratorOptions& options,
+                                            ClothSystem& system) {
+  if (options.name == "leapfrog") return std::make_unique<Leapfrog>(system, options.dt);
+  if (options.name == "symplectic-euler")
+    return std::make_unique<SymplecticEuler>(system, options.dt);
+  if (options.name == "implicit-euler") return std::make_unique<ImplicitEuler>(system, options);
+  if (const std::optional<ArkodeKind> kind = arkode_kind(options.name))
+    return std::make_unique<ArkodeStepper>(system, *kind, options);
+  throw std::logic_error("make_integrator: no factory for " + options.name);
+}
+
+}  // namespace drape

@@ -1,0 +1,49 @@
+#pragma once
+// A matrix of 3x3 blocks stored by block rows (BSR): the reduced system S and the coarse levels
+// of its multigrid preconditioner. Each row keeps its diagonal block first, then its
+// off-diagonal blocks, so that a product or a Gauss-Seidel sweep streams through one row's
+// blocks contiguously (no scatter, unlike a loop over springs).
+#include <vector>
+
+#include "core/model/state.hpp"
+
+namespace drape::detail {
+
+/// A square matrix of 3x3 blocks with a fixed pattern that always holds the diagonal.
+class BlockSparseMatrix {
+ public:
+  /// Sets the pattern: `neighbours[i]` lists the columns of row i other than i, without
+  /// duplicates. Every block becomes zero.
+  void set_pattern(const std::vector<std::vector<int>>& neighbours);
+  /// Number of block rows.
+  int rows() const { return static_cast<int>(m_row_start.size()) - 1; }
+  /// Index of block (i, j) in blocks(), or -1 when (i, j) is not in the pattern.
+  int find(int i, int j) const;
+  /// Block row i occupies blocks()[row_start(i)] (its diagonal) to blocks()[row_start(i + 1) - 1].
+  int row_start(int i) const { return m_row_start[static_cast<std::size_t>(i)]; }
+  int column(int k) const { return m_column[static_cast<std::size_t>(k)]; }
+  std::vector<Mat3>& blocks() { return m_blocks; }
+  const std::vector<Mat3>& blocks() const { return m_blocks; }
+
+  /// out = A p.
+  void multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const;
+  /// Inverts the diagonal blocks for precondition_jacobi() and the sweeps; they must be
+  /// invertible (symmetric positive definite for an SPD matrix).
+  void invert_diagonal();
+  /// out = D^-1 r, D the block diagonal.
+  void precondition_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& out) const;
+  /// One block Gauss-Seidel sweep on A x = b with rows descending:
+  /// x = (D + U)^-1 (b - L x), L and U the blocks left and right of the diagonal.
+  void backward_sweep(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  /// The forward sweep (rows ascending) from x = 0, x = (D + L)^-1 b, and the residual it
+  /// leaves, b - A x = -U x: together one pass over the blocks instead of a sweep and a product.
+  void forward_sweep_from_zero(const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                               Eigen::VectorXd& residual) const;
+
+ private:
+  std::vector<int> m_row_start{0}, m_column;  // row_start of an empty matrix: rows() = 0
+  std::vector<int> m_upper_start;  // row i's first block right of the diagonal
+  std::vector<Mat3> m_blocks, m_diagonal_inverse;
+};
+
+}  // namespace drape::detail

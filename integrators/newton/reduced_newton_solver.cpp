@@ -1,0 +1,274 @@
+#include "integrators/newton/reduced_newton_solver.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+
+namespace drape {
+
+std::optional<ReducedSolve> reduced_solve_named(const std::string& name) {
+  if (name == "pcg-reduced") return ReducedSolve::conjugate_gradients;
+  if (name == "pcg-multigrid") return ReducedSolve::multigrid_cg;
+  if (name == "sparse-direct") return ReducedSolve::sparse_ldlt;
+  return std::nullopt;
+}
+
+std::string reduced_solve_names() { return "pcg-reduced, pcg-multigrid, sparse-direct"; }
+
+namespace {
+
+// Each particle's spring neighbours, ascending, without duplicates (two springs may join the
+// same pair) and without the particle itself: S's off-diagonal block pattern.
+std::vector<std::vector<int>> spring_neighbours(const SpringSet& springs, int n) {
+  std::vector<std::vector<int>> rows(static_cast<std::size_t>(n));
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    rows[static_cast<std::size_t>(springs.second[e])].push_back(springs.first[e]);
+    rows[static_cast<std::size_t>(springs.first[e])].push_back(springs.second[e]);
+  }
+  for (auto& list : rows) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return rows;
+}
+
+}  // namespace
+
+ReducedNewtonSolver::ReducedNewtonSolver(const ClothSystem& system, ReducedSolve method,
+                                         ForceSplit split, double tolerance, int max_iterations)
+    : m_system(system),
+      m_method(method),
+      m_split(split),
+      m_tolerance(tolerance),
+      m_max_iterations(max_iterations) {}
+
+void ReducedNewtonSolver::update(ConstVecRef x, ConstVecRef v, double gamma) {
+  m_system.force_jacobian_blocks(x, v, true, m_split, m_jacobian);
+  m_has_jacobian = true;
+  set_gamma(gamma);
+}
+
+void ReducedNewtonSolver::set_gamma(double gamma) {
+  m_gamma = gamma;
+  form_system();
+}
+
+void ReducedNewtonSolver::form_system() {
+  const SpringSet& springs = m_system.cloth().springs;
+  const auto& fixed = m_system.constraints().mask();
+  const double mass = m_system.particle_mass();
+  const double g = m_gamma, g2 = m_gamma * m_gamma;
+  const std::size_t n = m_jacobian.particle_x.size();
+  m_diagonal.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    m_diagonal[i] = mass * Mat3::Identity() - g * m_jacobian.particle_v[i] - g2 * m_jacobian.particle_x[i];
+  m_coupling.resize(m_jacobian.spring_x.size());
+  for (std::size_t e = 0; e < m_coupling.size(); ++e) {
+    const auto i = static_cast<std::size_t>(springs.first[static_cast<Eigen::Index>(e)]);
+    const auto j = static_cast<std::size_t>(springs.second[static_cast<Eigen::Index>(e)]);
+    const Mat3 c = g * m_jacobian.spring_v[e] + g2 * m_jacobian.spring_x[e];
+    // K's pair pattern [-J J; J -J] puts +C_e on both diagonal blocks of S. A fixed particle's
+    // row and column are dropped: its diagonal stays M and it couples to nobody.
+    m_diagonal[i] += c;
+    m_diagonal[j] += c;
+    m_coupling[e] = fixed[i] || fixed[j] ? Mat3::Zero() : c;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (fixed[i]) m_diagonal[i] = mass * Mat3::Identity();
+  if (m_method == ReducedSolve::sparse_ldlt) {
+    if (m_s.size() == 0) build_pattern();
+    assemble_matrix();
+    m_ldlt.factorize(m_s);
+    return;
+  }
+  if (m_matrix.rows() == 0) build_block_rows();
+  assemble_block_rows();
+  // Each diagonal block is symmetric positive definite (a principal block of S).
+  m_matrix.invert_diagonal();
+  if (m_method == ReducedSolve::multigrid_cg) m_multigrid.update(m_matrix);
+}
+
+void ReducedNewtonSolver::build_block_rows() {
+  // Like the compressed pattern, the block rows depend on the springs alone: fixed particles'
+  // couplings are stored as zeros.
+  const SpringSet& springs = m_system.cloth().springs;
+  m_matrix.set_pattern(spring_neighbours(springs, m_system.num_particles()));
+  m_spring_blocks.resize(2 * static_cast<std::size_t>(springs.size()));
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    const int i = springs.first[e], j = springs.second[e];
+    m_spring_blocks[2 * static_cast<std::size_t>(e)] = m_matrix.find(i, j);
+    m_spring_blocks[2 * static_cast<std::size_t>(e) + 1] = m_matrix.find(j, i);
+  }
+  if (m_method == ReducedSolve::multigrid_cg) {
+    const ClothParams& grid = m_system.cloth().params;
+    m_multigrid.build(m_matrix, grid.rows, grid.cols);
+  }
+}
+
+void ReducedNewtonSolver::assemble_block_rows() {
+  std::vector<Mat3>& blocks = m_matrix.blocks();
+  // Accumulated, not written: two springs may join the same pair.
+  std::fill(blocks.begin(), blocks.end(), Mat3::Zero());
+  for (std::size_t i = 0; i < m_diagonal.size(); ++i)
+    blocks[static_cast<std::size_t>(m_matrix.row_start(static_cast<int>(i)))] = m_diagonal[i];
+  // C_e is symmetric (the definite Jacobian has no damping position term): S_ij = S_ji = -C_e.
+  for (std::size_t e = 0; e < m_coupling.size(); ++e) {
+    blocks[static_cast<std::size_t>(m_spring_blocks[2 * e])] -= m_coupling[e];
+    blocks[static_cast<std::size_t>(m_spring_blocks[2 * e + 1])] -= m_coupling[e];
+  }
+}
+
+void ReducedNewtonSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out) {
+  if (m_method == ReducedSolve::conjugate_gradients) {
+    m_matrix.precondition_jacobi(r, out);
+    return;
+  }
+  // The V-cycle mixes fixed particles into aggregates with free ones; their rows of S are
+  // decoupled (M I), so zeroing them keeps the preconditioner symmetric positive definite on
+  // the free particles, where CG's iterates live.
+  m_multigrid.apply(m_matrix, r, out);
+  m_system.constraints().zero_fixed(out);
+}
+
+void ReducedNewtonSolver::build_pattern() {
+  // Column block q holds the row blocks of q itself and of its spring neighbours, ascending;
+  // its three columns share that row list. The pattern depends on the springs alone, so it and
+  // the fill-reducing ordering serve every later step, whatever the fixed set.
+  const SpringSet& springs = m_system.cloth().springs;
+  const int n = m_system.num_particles();
+  std::vector<std::vector<int>> rows = spring_neighbours(springs, n);
+  for (int q = 0; q < n; ++q) {
+    auto& list = rows[static_cast<std::size_t>(q)];
+    list.insert(std::upper_bound(list.begin(), list.end(), q), q);
+  }
+  std::vector<Eigen::Index> column_start(static_cast<std::size_t>(n) + 1, 0);
+  for (std::size_t q = 0; q < rows.size(); ++q)
+    column_start[q + 1] = column_start[q] + 9 * static_cast<Eigen::Index>(rows[q].size());
+  const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(n);
+  m_s.resize(n3, n3);
+  m_s.resizeNonZeros(column_start.back());
+  auto* outer = m_s.outerIndexPtr();
+  auto* inner = m_s.innerIndexPtr();
+  for (std::size_t q = 0; q < rows.size(); ++q) {
+    const auto stride = 3 * static_cast<Eigen::Index>(rows[q].size());
+    for (Eigen::Index b = 0; b < 3; ++b) {
+      const Eigen::Index start = column_start[q] + b * stride;
+      outer[3 * q + static_cast<std::size_t>(b)] = static_cast<int>(start);
+      for (std::size_t k = 0; k < rows[q].size(); ++k)
+        for (int a = 0; a < 3; ++a)
+          inner[start + 3 * static_cast<Eigen::Index>(k) + a] = 3 * rows[q][k] + a;
+    }
+  }
+  outer[n3] = static_cast<int>(column_start.back());
+  auto slot = [&](int p, int q) {
+    const auto& list = rows[static_cast<std::size_t>(q)];
+    const auto rank = std::lower_bound(list.begin(), list.end(), p) - list.begin();
+    return BlockSlot{column_start[static_cast<std::size_t>(q)] + 3 * rank,
+                     3 * static_cast<Eigen::Index>(list.size())};
+  };
+  m_diagonal_slots.resize(static_cast<std::size_t>(n));
+  for (int q = 0; q < n; ++q) m_diagonal_slots[static_cast<std::size_t>(q)] = slot(q, q);
+  m_spring_slots.resize(2 * static_cast<std::size_t>(springs.size()));
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    m_spring_slots[2 * static_cast<std::size_t>(e)] = slot(springs.first[e], springs.second[e]);
+    m_spring_slots[2 * static_cast<std::size_t>(e) + 1] = slot(springs.second[e], springs.first[e]);
+  }
+  m_s.coeffs().setZero();
+  m_ldlt.analyzePattern(m_s);
+}
+
+void ReducedNewtonSolver::assemble_matrix() {
+  double* values = m_s.valuePtr();
+  // Accumulated, not written: two springs may join the same pair.
+  std::fill(values, values + m_s.nonZeros(), 0.0);
+  auto add = [&](const BlockSlot& slot, const Mat3& block) {
+    for (Eigen::Index b = 0; b < 3; ++b)
+      for (Eigen::Index a = 0; a < 3; ++a) values[slot.base + b * slot.stride + a] += block(a, b);
+  };
+  for (std::size_t i = 0; i < m_diagonal.size(); ++i) add(m_diagonal_slots[i], m_diagonal[i]);
+  for (std::size_t e = 0; e < m_coupling.size(); ++e) {
+    add(m_spring_slots[2 * e], -m_coupling[e]);
+    add(m_spring_slots[2 * e + 1], -m_coupling[e].transpose());
+  }
+}
+
+void ReducedNewtonSolver::jacobian_times(ConstVecRef r_x, const Eigen::VectorXd& w,
+                                         Eigen::VectorXd& out) const {
+  const SpringSet& springs = m_system.cloth().springs;
+  out.resize(r_x.size());
+  for (std::size_t i = 0; i < m_jacobian.particle_x.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    particle(out, k).noalias() =
+        m_jacobian.particle_x[i] * particle(r_x, k) + m_jacobian.particle_v[i] * particle(w, k);
+  }
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    const auto s = static_cast<std::size_t>(e);
+    const int i = springs.first[e], j = springs.second[e];
+    const Vec3 df = m_jacobian.spring_x[s] * (particle(r_x, j) - particle(r_x, i)) +
+                    m_jacobian.spring_v[s] * (particle(w, j) - particle(w, i));
+    particle(out, i) += df;
+    particle(out, j) -= df;
+  }
+}
+
+bool ReducedNewtonSolver::solve(ConstVecRef r, VecRef z, CgStart start) {
+  const Eigen::Index n3 = r.size() / 2;
+  const auto r_x = r.head(n3), r_v = r.tail(n3);
+  const ConstraintSet& constraints = m_system.constraints();
+  // b = M r_v + gamma (K r_x + D r_v|fixed): the fixed particles' known z enters through the
+  // columns of K and D, whose fixed rows are dropped.
+  m_fixed_r_v.setZero(n3);
+  for (const int i : constraints.fixed_particles()) particle(m_fixed_r_v, i) = particle(r_v, i);
+  jacobian_times(r_x, m_fixed_r_v, m_product);
+  m_b = m_system.particle_mass() * r_v + m_gamma * m_product;
+  constraints.zero_fixed(m_b);
+  const bool converged = solve_reduced(m_b, m_z_v, start);
+  z.tail(n3) = m_z_v;
+  z.head(n3) = r_x + m_gamma * m_z_v;
+  for (const int i : constraints.fixed_particles()) {
+    particle(z.tail(n3), i) = particle(r_v, i);
+    particle(z.head(n3), i) = particle(r_x, i);
+  }
+  return converged;
+}
+
+bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v,
+                                        CgStart start) {
+  if (m_method == ReducedSolve::sparse_ldlt) {
+    z_v = m_ldlt.solve(b);
+    return m_ldlt.info() == Eigen::Success;
+  }
+  // Preconditioned conjugate gradients (Shewchuk 1994, B2), stopping at |b - S z| <= tolerance
+  // |b|. The iterates stay zero on fixed particles: b and the preconditioner are zero there.
+  const double b_norm = b.norm();
+  if (b_norm == 0.0) {
+    z_v.setZero(b.size());
+    return true;
+  }
+  if (start == CgStart::previous && z_v.size() == b.size()) {
+    m_system.constraints().zero_fixed(z_v);
+    m_matrix.multiply(z_v, m_product);
+    m_residual = b - m_product;
+  } else {
+    z_v.setZero(b.size());
+    m_residual = b;
+  }
+  if (m_residual.norm() <= m_tolerance * b_norm) return true;
+  precondition(m_residual, m_preconditioned);
+  m_direction = m_preconditioned;
+  double rho = m_residual.dot(m_preconditioned);
+  for (int k = 0; k < m_max_iterations; ++k) {
+    m_matrix.multiply(m_direction, m_product);
+    const double alpha = rho / m_direction.dot(m_product);
+    z_v += alpha * m_direction;
+    m_residual -= alpha * m_product;
+    ++m_iterations;
+    if (m_residual.norm() <= m_tolerance * b_norm) return true;
+    precondition(m_residual, m_preconditioned);
+    const double rho_next = m_residual.dot(m_preconditioned);
+    m_direction = m_preconditioned + (rho_next / rho) * m_direction;
+    rho = rho_next;
+  }
+  return false;
+}
+
+}  // namespace drape

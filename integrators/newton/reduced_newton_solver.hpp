@@ -1,0 +1,108 @@
+#pragma once
+// Newton's linear system of an implicit step of the cloth ODE, solved on the 3N velocities.
+//
+// With y = [x; v] and J = [0 I; M^-1 K  M^-1 D] on the free particles (K = dF/dx, D = dF/dv;
+// a fixed particle's rows of J are zero because its right-hand side is prescribed), the system
+// (I - gamma J) z = r reduces exactly to
+//     S z_v = M r_v + gamma K r_x + gamma D r_v|fixed,   S = M - gamma D - gamma^2 K,
+// on the free particles, then z_x = r_x + gamma z_v; a fixed particle keeps z = r. S uses the
+// definite Jacobian (forces.hpp), so it is symmetric positive definite: conjugate gradients or
+// a sparse Cholesky factorisation solve it (Baraff and Witkin 1998, section 5).
+//
+// S has the spring graph's 3x3 block sparsity, which never changes: a spring e = (i, j) with
+// Jacobian blocks K_e, D_e couples i and j through -C_e, C_e = gamma D_e + gamma^2 K_e, and adds
+// C_e to both diagonal blocks. CG keeps S by block rows (detail::BlockSparseMatrix) and
+// preconditions with its block diagonal or a multigrid V-cycle on the cloth grid; the
+// factorisation fills a compressed matrix whose pattern and symbolic analysis are built once.
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/model/cloth_system.hpp"
+#include "integrators/newton/aggregation_multigrid.hpp"
+#include "integrators/newton/block_sparse_matrix.hpp"
+
+namespace drape {
+
+/// How the reduced system S is solved.
+enum class ReducedSolve {
+  conjugate_gradients,  ///< `pcg-reduced`: block-Jacobi preconditioned CG on S
+  multigrid_cg,         ///< `pcg-multigrid`: CG on S preconditioned by an aggregation V-cycle
+  sparse_ldlt,          ///< `sparse-direct`: Eigen's SimplicialLDLT factorisation of S
+};
+
+/// Where conjugate gradients start.
+enum class CgStart {
+  zero,      ///< z_v = 0 (a preconditioner: every right-hand side is unrelated to the last)
+  previous,  ///< the last solve's z_v (implicit Euler: the previous step's dv, a warm start)
+};
+
+/// The method `integrator.linear_solver` names, or nothing for an unknown name.
+std::optional<ReducedSolve> reduced_solve_named(const std::string& name);
+/// Every accepted `integrator.linear_solver` name, comma separated (for error messages).
+std::string reduced_solve_names();
+
+/// Solves (I - gamma J) z = r for the cloth ODE through the reduced 3N system S.
+class ReducedNewtonSolver {
+ public:
+  /// `split` selects the forces whose Jacobian J holds (all, or the springs for IMEX).
+  ReducedNewtonSolver(const ClothSystem& system, ReducedSolve method, ForceSplit split,
+                      double tolerance, int max_iterations);
+
+  /// Evaluates the definite K and D blocks at (x, v) and forms S for `gamma`.
+  void update(ConstVecRef x, ConstVecRef v, double gamma);
+  /// Forms S for a new gamma from the last K and D.
+  void set_gamma(double gamma);
+  ReducedSolve method() const { return m_method; }
+  /// False until update() runs, and again after invalidate().
+  bool has_jacobian() const { return m_has_jacobian; }
+  /// Forgets K and D (the constraints changed): the next setup must call update().
+  void invalidate() { m_has_jacobian = false; }
+  /// z = (I - gamma J)^-1 r for 6N vectors; false when CG stopped before its tolerance (z is
+  /// then its last iterate).
+  bool solve(ConstVecRef r, VecRef z, CgStart start = CgStart::zero);
+  /// CG iterations over all solves so far (0 for the direct solve).
+  long iterations() const { return m_iterations; }
+
+ private:
+  /// Where a 3x3 block of S lives in m_s: entry (a, b) at values[base + b * stride + a].
+  struct BlockSlot {
+    Eigen::Index base = 0, stride = 0;
+  };
+
+  void form_system();
+  void build_pattern();
+  void assemble_matrix();
+  void build_block_rows();
+  void assemble_block_rows();
+  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out);
+  /// out = K r_x + D w with the unclamped columns of fixed particles (rows not zeroed).
+  void jacobian_times(ConstVecRef r_x, const Eigen::VectorXd& w, Eigen::VectorXd& out) const;
+  bool solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v, CgStart start);
+
+  const ClothSystem& m_system;
+  ReducedSolve m_method;
+  ForceSplit m_split;
+  double m_tolerance;
+  int m_max_iterations;
+  double m_gamma = 0.0;
+  bool m_has_jacobian = false;
+  long m_iterations = 0;
+  JacobianBlocks m_jacobian;
+  std::vector<Mat3> m_coupling;  // C_e, zero when an end is fixed (S_ij = -C_e on free pairs)
+  std::vector<Mat3> m_diagonal;  // S_ii (M on a fixed particle)
+  // CG only: S by block rows, spring e's blocks (i, j) at m_spring_blocks[2e] and (j, i) at
+  // [2e + 1], and the multigrid levels of pcg-multigrid.
+  detail::BlockSparseMatrix m_matrix;
+  std::vector<int> m_spring_blocks;
+  detail::AggregationMultigrid m_multigrid;
+  // sparse-direct only: S in a pattern built once, its blocks' slots, the symbolic analysis.
+  Eigen::SparseMatrix<double> m_s;
+  std::vector<BlockSlot> m_diagonal_slots, m_spring_slots;  // spring e: (i, j) at 2e, (j, i) at 2e+1
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> m_ldlt;
+  Eigen::VectorXd m_b, m_z_v, m_fixed_r_v, m_residual, m_direction, m_preconditioned, m_product;
+};
+
+}  // namespace drape

@@ -1,0 +1,166 @@
+// The assembled model: forces against energy, Jacobians against forces, constraints, momentum.
+#include <gtest/gtest.h>
+
+#include "core/model/cloth_system.hpp"
+#include "core/dummy/dummy_sources.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace drape {
+namespace {
+
+using testing::forces_of;
+using testing::jitter;
+using testing::potential_of;
+
+ClothSystem make_system(double damping_spring = 0.0, double damping_air = 0.0) {
+  ClothParams p = testing::small_cloth(4, 5);
+  p.damping_spring = damping_spring;
+  p.damping_air = damping_air;
+  return ClothSystem(build_cloth(p), nullptr, ForceParams{});
+}
+
+TEST(ClothSystem, ForcesAreMinusPotentialGradientForEveryFamilyAndGravity) {
+  const ClothSystem s = make_system();
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const Eigen::VectorXd x = jitter(s.cloth().rest_positions, 0.005, seed);
+    const Eigen::VectorXd v = Eigen::VectorXd::Zero(x.size());
+    const Eigen::VectorXd grad =
+        testing::fd_gradient([&](const Eigen::VectorXd& xx) { return potential_of(s, xx); }, x, 1e-7);
+    const Eigen::VectorXd f = forces_of(s, x, v);
+    EXPECT_LT((f + grad).norm(), 1e-6 * f.norm()) << "seed " << seed;
+  }
+}
+
+TEST(ClothSystem, JacobianTimesVectorMatchesForceDifferences) {
+  const ClothSystem s = make_system(0.05, 0.01);
+  const Eigen::VectorXd x = jitter(s.cloth().rest_positions, 0.006, 7);
+  const Eigen::VectorXd v = jitter(Eigen::VectorXd::Zero(x.size()), 0.3, 8);
+  const Eigen::VectorXd dx = jitter(Eigen::VectorXd::Zero(x.size()), 1.0, 9);
+  const Eigen::VectorXd dv = jitter(Eigen::VectorXd::Zero(x.size()), 1.0, 10);
+  const double h = 1e-7;
+  const Eigen::VectorXd fd =
+      (forces_of(s, x + h * dx, v + h * dv) - forces_of(s, x - h * dx, v - h * dv)) / (2 * h);
+  Eigen::VectorXd jv(x.size());
+  s.force_jacobian_times(ConstVecMap(x.data(), x.size()), ConstVecMap(v.data(), v.size()),
+                         ConstVecMap(dx.data(), dx.size()), ConstVecMap(dv.data(), dv.size()),
+                         VecMap(jv.data(), jv.size()), false);
+  EXPECT_LT((jv - fd).norm(), 1e-6 * fd.norm());
+}
+
+TEST(ClothSystem, SparseJacobiansEqualTheProducts) {
+  ClothSystem s = make_system(0.05, 0.01);
+  s.constraints().fix_at(0, s.cloth().rest_positions.head<3>());
+  const Eigen::VectorXd x = jitter(s.cloth().rest_positions, 0.006, 11);
+  const Eigen::VectorXd v = jitter(Eigen::VectorXd::Zero(x.size()), 0.3, 12);
+  const Eigen::VectorXd dx = jitter(Eigen::VectorXd::Zero(x.size()), 1.0, 13);
+  const Eigen::VectorXd dv = jitter(Eigen::VectorXd::Zero(x.size()), 1.0, 14);
+  for (const bool definite : {false, true}) {
+    Eigen::SparseMatrix<double> kx, dvm;
+    const ConstVecMap xm(x.data(), x.size()), vm(v.data(), v.size());
+    s.force_jacobians(xm, vm, definite, kx, dvm);
+    Eigen::VectorXd jv(x.size());
+    s.force_jacobian_times(xm, vm, ConstVecMap(dx.data(), dx.size()),
+                           ConstVecMap(dv.data(), dv.size()), VecMap(jv.data(), jv.size()),
+                           definite);
+    EXPECT_LT((kx * dx + dvm * dv - jv).norm(), 1e-12 * jv.norm());
+    EXPECT_TRUE(jv.head<3>().isZero()) << "fixed rows are zero";
+  }
+}
+
+TEST(ClothSystem, InternalForcesConserveMomentum) {
+  ClothParams p = testing::small_cloth(4, 5);
+  p.damping_spring = 0.2;
+  const ClothSystem s(build_cloth(p), nullptr, ForceParams{Vec3::Zero(), {}});
+  const Eigen::VectorXd x = jitter(s.cloth().rest_positions, 0.006, 3);
+  const Eigen::VectorXd v = jitter(Eigen::VectorXd::Zero(x.size()), 0.5, 4);
+  const Eigen::VectorXd f = forces_of(s, x, v);
+  Vec3 total = Vec3::Zero();
+  for (int i = 0; i < s.num_particles(); ++i) total += f.segment<3>(3 * i);
+  EXPECT_LT(total.norm(), 1e-13);
+}
+
+TEST(ClothSystem, GravityAndAirDampingClosedForm) {
+  ClothParams p = testing::small_cloth(1, 2);
+  p.damping_air = 0.3;
+  const ClothSystem s(build_cloth(p), nullptr, ForceParams{});
+  const Eigen::VectorXd x = s.cloth().rest_positions;  // springs at rest
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(6);
+  v[0] = 2.0;
+  const Eigen::VectorXd f = forces_of(s, x, v);
+  EXPECT_NEAR(f[0], -0.6, 1e-15);
+  EXPECT_NEAR(f[1], -9.81 * 0.001, 1e-15);
+  EXPECT_NEAR(f[4], -9.81 * 0.001, 1e-15);
+}
+
+class Circle final : public Trajectory {
+ public:
+  Vec3 position(double t) const override { return Vec3(std::cos(t), std::sin(t), 0.0); }
+  Vec3 velocity(double t) const override { return Vec3(-std::sin(t), std::cos(t), 0.0); }
+  Vec3 acceleration(double t) const override { return -position(t); }
+};
+
+TEST(ClothSystem, FixedParticlesFollowTheirPrescribedMotionInRhsAndProjection) {
+  ClothSystem s = make_system(0.1, 0.1);
+  s.constraints().fix(3, std::make_shared<Circle>());
+  const double t = 0.7;
+  Eigen::VectorXd y = s.initial_state(t);
+  const Eigen::Index n3 = 3 * s.num_particles();
+  EXPECT_TRUE(y.segment<3>(9).isApprox(Vec3(std::cos(t), std::sin(t), 0.0)));
+  EXPECT_TRUE(y.segment<3>(n3 + 9).isApprox(Vec3(-std::sin(t), std::cos(t), 0.0)));
+  Eigen::VectorXd y_dot(y.size());
+  s.rhs(t, ConstVecMap(y.data(), y.size()), VecMap(y_dot.data(), y_dot.size()));
+  EXPECT_TRUE(y_dot.segment<3>(9).isApprox(Vec3(-std::sin(t), std::cos(t), 0.0)));
+  EXPECT_TRUE(y_dot.segment<3>(n3 + 9).isApprox(-Vec3(std::cos(t), std::sin(t), 0.0)));
+  // A free particle's acceleration is F/m.
+  const Eigen::VectorXd f = forces_of(s, y.head(n3), y.tail(n3));
+  EXPECT_TRUE(y_dot.segment<3>(n3).isApprox(f.head<3>() / 0.001));
+  s.constraints().release(3);
+  EXPECT_FALSE(s.constraints().is_fixed(3));
+  EXPECT_TRUE(s.constraints().fixed_particles().empty());
+}
+
+// The IMEX split: springs plus the rest is every force, for forces, Jacobians and right-hand
+// sides, on a cloth in contact with an object (the rest includes collision) with a fixed particle.
+TEST(ClothSystem, SpringAndNonSpringPartsAddUpToAll) {
+  ClothParams p = testing::small_cloth(4, 5);
+  p.damping_spring = 0.05;
+  p.damping_air = 0.01;
+  // A sphere just behind the cloth's plane: most particles are within the collision threshold.
+  const auto sphere = std::make_shared<const Dummy>(make_dummy(
+      nlohmann::json{{"builtin", "sphere"}, {"radius", 0.05}, {"center", {0.04, 0.97, -0.054}}},
+      "test", "dummy", "."));
+  ClothSystem s(build_cloth(p), sphere, ForceParams{});
+  s.constraints().fix_at(0, s.cloth().rest_positions.segment<3>(0));
+  const Eigen::Index n3 = 3 * s.num_particles();
+  const Eigen::VectorXd x = jitter(s.cloth().rest_positions, 0.003, 11);
+  const Eigen::VectorXd v = jitter(Eigen::VectorXd::Zero(n3), 0.3, 12);
+  ASSERT_GT(s.energy(x, v).collision, 0.0);
+
+  auto parts = [&](auto evaluate) {
+    Eigen::VectorXd all(n3), springs(n3), rest(n3);
+    evaluate(ForceSplit::all, all);
+    evaluate(ForceSplit::springs, springs);
+    evaluate(ForceSplit::non_springs, rest);
+    EXPECT_LT((springs + rest - all).norm(), 1e-12 * all.norm());
+    EXPECT_GT(springs.norm(), 0.0);
+    EXPECT_GT(rest.norm(), 0.0);
+  };
+  parts([&](ForceSplit split, Eigen::VectorXd& f) { s.forces(x, v, f, split); });
+  const Eigen::VectorXd dx = jitter(Eigen::VectorXd::Zero(n3), 1.0, 13);
+  const Eigen::VectorXd dv = jitter(Eigen::VectorXd::Zero(n3), 1.0, 14);
+  for (const bool definite : {false, true})
+    parts([&](ForceSplit split, Eigen::VectorXd& out) {
+      s.force_jacobian_times(x, v, dx, dv, out, definite, split);
+    });
+
+  Eigen::VectorXd y(2 * n3);
+  y << x, v;
+  Eigen::VectorXd all(2 * n3), springs(2 * n3), rest(2 * n3);
+  s.rhs(0.0, y, all, ForceSplit::all);
+  s.rhs(0.0, y, springs, ForceSplit::springs);
+  s.rhs(0.0, y, rest, ForceSplit::non_springs);
+  EXPECT_LT((springs + rest - all).norm(), 1e-12 * all.norm());
+}
+
+}  // namespace
+}  // namespace drape

@@ -1,0 +1,114 @@
+// Scene validation (docs/model.md section 9): every class of bad input names the file and the field.
+#include <gtest/gtest.h>
+
+#include "core/scene/input_error.hpp"
+#include "core/scene/scene.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace drape {
+namespace {
+
+nlohmann::json valid_scene() {
+  return nlohmann::json::parse(R"({
+    "cloth": {"rows": 4, "cols": 5, "spacing": 0.02, "origin": [0, 1.4, 0.2],
+              "particle_mass": 0.001, "k_structural": 50},
+    "pins": [[0, 0], [0, 4]],
+    "dummy": null,
+    "integrator": {"name": "leapfrog", "dt": 0.001},
+    "duration": 0.5
+  })");
+}
+
+std::string error_for(const nlohmann::json& scene) {
+  return testing::input_error_message([&] { parse_scene(scene, "scene.json", "."); });
+}
+
+nlohmann::json with(const std::string& assignment) {
+  nlohmann::json scene = valid_scene();
+  apply_override(scene, assignment);
+  return scene;
+}
+
+TEST(Scene, ValidSceneParsesWithDefaults) {
+  const Scene s = parse_scene(valid_scene(), "scene.json", ".");
+  EXPECT_EQ(s.cloth.rows, 4);
+  EXPECT_EQ(s.cloth.k_shear, 50.0) << "shear defaults to the structural stiffness";
+  EXPECT_EQ(s.cloth.k_bending, 0.0);
+  EXPECT_EQ(s.cloth.col_dir, Vec3::UnitX());
+  EXPECT_EQ(s.cloth.row_dir, -Vec3::UnitY());
+  EXPECT_EQ(s.forces.gravity, Vec3(0, -9.81, 0));
+  ASSERT_EQ(s.pins.size(), 2u);
+  EXPECT_EQ(s.pins[1].col, 4);
+  EXPECT_TRUE(s.dummy.is_null());
+  EXPECT_EQ(s.duration, 0.5);
+}
+
+TEST(Scene, AbsentDummyIsTheDressForm) {
+  nlohmann::json scene = valid_scene();
+  scene.erase("dummy");
+  EXPECT_EQ(parse_scene(scene, "scene.json", ".").dummy, nlohmann::json({{"builtin", "dress-form"}}));
+}
+
+TEST(Scene, UnknownKeysAreErrors) {
+  EXPECT_EQ(error_for(with("cloth.stiffness=3")), "scene.json: cloth.stiffness: unknown key");
+  EXPECT_EQ(error_for(with("colour=1")), "scene.json: colour: unknown key");
+  EXPECT_EQ(error_for(with("collision.modell=\"particle\"")),
+            "scene.json: collision.modell: unknown key");
+}
+
+TEST(Scene, MissingRequiredFieldsAreNamed) {
+  nlohmann::json scene = valid_scene();
+  scene["cloth"].erase("spacing");
+  EXPECT_EQ(error_for(scene), "scene.json: cloth.spacing: required field is missing");
+  scene = valid_scene();
+  scene.erase("duration");
+  EXPECT_EQ(error_for(scene), "scene.json: duration: required field is missing");
+}
+
+TEST(Scene, WrongTypes) {
+  EXPECT_EQ(error_for(with("cloth.rows=\"four\"")),
+            "scene.json: cloth.rows: expected an integer, got \"four\"");
+  EXPECT_EQ(error_for(with("cloth.origin=[0, 1]")),
+            "scene.json: cloth.origin: expected 3 numbers [x, y, z]");
+  EXPECT_EQ(error_for(with("integrator=3")), "scene.json: integrator: expected an object");
+}
+
+TEST(Scene, OutOfRangeValues) {
+  EXPECT_EQ(error_for(with("cloth.spacing=0")), "scene.json: cloth.spacing: must be positive, got 0.0");
+  EXPECT_EQ(error_for(with("cloth.particle_mass=-1")),
+            "scene.json: cloth.particle_mass: must be positive, got -1.0");
+  EXPECT_EQ(error_for(with("cloth.rows=0")), "scene.json: cloth.rows: must be at least 1");
+  EXPECT_EQ(error_for(with("cloth.k_shear=-2")),
+            "scene.json: cloth.k_shear: must not be negative, got -2.0");
+  EXPECT_EQ(error_for(with("duration=-1")), "scene.json: duration: must not be negative, got -1.0");
+  EXPECT_EQ(error_for(with("collision.threshold=0")),
+            "scene.json: collision.threshold: must be positive, got 0.0");
+}
+
+TEST(Scene, PinsOffTheGrid) {
+  EXPECT_EQ(error_for(with("pins=[[0, 0], [4, 0]]")),
+            "scene.json: pins[1]: [4, 0] is off the 4 x 5 grid");
+  EXPECT_EQ(error_for(with("pins=[[0]]")), "scene.json: pins[0]: expected [row, col] integers, got [0]");
+}
+
+TEST(Scene, DirectionsMustBeOrthogonalUnitVectors) {
+  EXPECT_EQ(error_for(with("cloth.col_dir=[2, 0, 0]")),
+            "scene.json: cloth.col_dir: must be a unit vector, has length 2.000000");
+  EXPECT_EQ(error_for(with("cloth.row_dir=[1, 0, 0]")),
+            "scene.json: cloth.row_dir: must be orthogonal to cloth.col_dir");
+}
+
+TEST(Scene, OverridesCreatePathsAndParseJsonElseString) {
+  nlohmann::json scene = valid_scene();
+  apply_override(scene, "integrator.name=arkode-dirk");
+  apply_override(scene, "integrator.dt=0.01");
+  apply_override(scene, "output.energy_interval=0");
+  EXPECT_EQ(scene["integrator"]["name"], "arkode-dirk");
+  EXPECT_EQ(scene["integrator"]["dt"], 0.01);
+  EXPECT_EQ(scene["output"]["energy_interval"], 0);
+  EXPECT_THROW(apply_override(scene, "novalue"), InputError);
+  EXPECT_THROW(apply_override(scene, "duration.x=1"), InputError);
+}
+
+}  // namespace
+}  // namespace drape

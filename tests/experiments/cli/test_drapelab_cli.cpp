@@ -1,0 +1,176 @@
+// `drapelab run` end to end: files written, exit codes, messages (docs/model.md section 9).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int exit_code;
+  std::string err;
+};
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Result drapelab(const std::string& args) {
+  // ctest runs tests in parallel processes: each test gets its own stderr file.
+  const fs::path err = fs::path(::testing::TempDir()) /
+                       (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                        "_stderr.txt");
+  const std::string cmd = std::string(DRAPELAB_EXE) + " " + args + " 2> " + err.string() + " > /dev/null";
+  const int status = std::system(cmd.c_str());
+  return {WEXITSTATUS(status), read_text(err)};
+}
+
+fs::path write_scene(const std::string& name, const nlohmann::json& scene) {
+  const fs::path file = fs::path(::testing::TempDir()) / name;
+  std::ofstream(file) << scene.dump(2);
+  return file;
+}
+
+nlohmann::json hanging_cloth() {
+  return nlohmann::json::parse(R"({
+    "cloth": {"rows": 6, "cols": 6, "spacing": 0.02, "origin": [0, 1.4, 0.2],
+              "particle_mass": 0.001, "k_structural": 20, "damping_spring": 0.01},
+    "pins": [[0, 0], [0, 5]],
+    "dummy": null,
+    "integrator": {"name": "leapfrog", "dt": 0.001},
+    "duration": 0.2,
+    "output": {"energy_interval": 0.05}
+  })");
+}
+
+TEST(DrapelabRun, WritesSummaryEnergyAndState) {
+  const fs::path out = fs::path(::testing::TempDir()) / "run_ok";
+  fs::remove_all(out);
+  const Result r = drapelab("run " + write_scene("ok.json", hanging_cloth()).string() + " --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_EQ(summary["integrator"], "leapfrog");
+  EXPECT_EQ(summary["steps"], 200);
+  EXPECT_DOUBLE_EQ(summary["sim_time"].get<double>(), 0.2);
+  EXPECT_EQ(summary["rhs_evals"], 201);
+  for (const char* key : {"dt", "wall_seconds", "energy_initial", "energy_final",
+                          "energy_drift_max_rel", "events"})
+    EXPECT_TRUE(summary.contains(key)) << key;
+
+  std::istringstream energy(read_text(out / "energy.csv"));
+  std::string line;
+  std::getline(energy, line);
+  EXPECT_EQ(line, "t,kinetic,spring,gravity,collision,total");
+  int rows = 0;
+  while (std::getline(energy, line)) ++rows;
+  EXPECT_EQ(rows, 5) << "t = 0, 0.05, 0.1, 0.15, 0.2";
+
+  std::istringstream state(read_text(out / "state.csv"));
+  std::getline(state, line);
+  EXPECT_EQ(line, "index,row,col,x,y,z,vx,vy,vz,fixed");
+  std::getline(state, line);
+  EXPECT_EQ(line.substr(0, 6), "0,0,0,");
+  EXPECT_EQ(line.back(), '1') << "particle 0 is pinned";
+  rows = 1;
+  while (std::getline(state, line)) ++rows;
+  EXPECT_EQ(rows, 36);
+}
+
+TEST(DrapelabRun, SetOverridesAreValidatedLikeTheFile) {
+  const fs::path scene = write_scene("set.json", hanging_cloth());
+  Result r = drapelab("run " + scene.string() + " --out /tmp/unused --set cloth.spacing=-0.1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(scene.string() + ": cloth.spacing: must be positive"), std::string::npos) << r.err;
+  r = drapelab("run " + scene.string() + " --out /tmp/unused --set integrator.name=euler-forward");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("integrator.name: unknown integrator 'euler-forward'"), std::string::npos) << r.err;
+  // The scene's integrator is leapfrog: a key only ARKODE reads is refused, not ignored.
+  r = drapelab("run " + scene.string() + " --out /tmp/unused --set integrator.rtol=1e-3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(scene.string() + ": integrator.rtol: not used by this run of 'leapfrog'"),
+            std::string::npos)
+      << r.err;
+  r = drapelab("run " + scene.string() +
+               " --out /tmp/unused --set integrator.name=arkode-dirk --set integrator.max_step_halvings=31");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("integrator.max_step_halvings: must be between 0 and 30"), std::string::npos)
+      << r.err;
+}
+
+TEST(DrapelabRun, MissingFileAndBadUsageExitWithTwo) {
+  Result r = drapelab("run /nonexistent/scene.json --out /tmp/unused");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("/nonexistent/scene.json: cannot open file"), std::string::npos) << r.err;
+  EXPECT_EQ(drapelab("run").exit_code, 2);
+  EXPECT_EQ(drapelab("frobnicate").exit_code, 2);
+}
+
+TEST(DrapelabRun, DivergenceStopsWritesItsSummaryAndExitsWithThree) {
+  nlohmann::json scene = hanging_cloth();
+  scene["cloth"]["k_structural"] = 2000;  // sqrt(k/m) ~ 1400 rad/s: dt = 5 ms is far past stability
+  scene["integrator"]["dt"] = 0.005;
+  scene["duration"] = 5.0;
+  const fs::path out = fs::path(::testing::TempDir()) / "run_diverged";
+  fs::remove_all(out);
+  const Result r = drapelab("run " + write_scene("div.json", scene).string() + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 3);
+  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(summary["status"], "diverged");
+  EXPECT_LT(summary["time"].get<double>(), 1.0) << "stops at once";
+  EXPECT_FALSE(summary["reason"].get<std::string>().empty());
+  EXPECT_FALSE(fs::exists(out / "state.csv")) << "no final state is passed off as complete";
+}
+
+TEST(DrapelabRun, BadRecordingExitsWithTwoNamingFileAndLine) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "bad_recording";
+  fs::create_directories(dir);
+  {
+    std::ofstream bad(dir / "hands.jsonl");
+    bad << "{\"format\": \"drapelab-recording\", \"version\": 1}\n"
+        << "{\"t\": 0.0, \"right\": [0, 1, 0]}\n"
+        << "{\"t\": 0.1, \"right\": [0, NaN, 0]}\n";
+  }
+  nlohmann::json scene = hanging_cloth();
+  scene["input"] = {{"recording", "hands.jsonl"}};
+  std::ofstream(dir / "scene.json") << scene.dump(2);
+  Result r = drapelab("run " + (dir / "scene.json").string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("hands.jsonl"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
+
+  r = drapelab("convert " + (dir / "hands.jsonl").string() + " " + (dir / "out.jsonl").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
+}
+
+TEST(DrapelabRun, CombinationRunsUnderAnImplicitIntegrator) {
+  const fs::path out = fs::path(::testing::TempDir()) / "c4_implicit";
+  fs::remove_all(out);
+  const std::string scene =
+      std::string(DRAPE_SOURCE_DIR) + "/experiments/scenes/combination4_hold_release_attach.json";
+  const Result r = drapelab("run " + scene + " --out " + out.string() +
+                            " --set integrator.name=implicit-euler --set integrator.dt=0.005");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  std::vector<std::string> types;
+  for (const auto& e : summary["events"]) types.push_back(e["type"]);
+  EXPECT_EQ(types, (std::vector<std::string>{"hold", "release", "attach", "attach_fixed"}));
+  EXPECT_EQ(summary["counters"]["resets"], 4) << "restarted at each event";
+}
+
+TEST(Readme, TestCommandIsWhatCiRuns) {
+  const std::string readme = read_text(fs::path(DRAPE_SOURCE_DIR) / "README.md");
+  const std::string ci = read_text(fs::path(DRAPE_SOURCE_DIR) / ".ci" / "run");
+  const std::string command = ci.substr(ci.rfind("./install_dependencies.sh"));
+  EXPECT_NE(readme.find(command), std::string::npos) << command;
+}
+
+}  // namespace

@@ -1,0 +1,84 @@
+// The defaults that integrator options fall back to, and the keys a run would not use.
+#include <gtest/gtest.h>
+
+#include "integrators/interface/integrator_options.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace drape {
+namespace {
+
+TEST(IntegratorOptions, LinearSolverAndToleranceDefaultPerIntegrator) {
+  IntegratorOptions o;
+  o.name = "implicit-euler";
+  EXPECT_EQ(linear_solver_of(o), "pcg-multigrid");
+  EXPECT_EQ(linear_tolerance_of(o), 1e-3);
+  o.linear_solver = "pcg-reduced";
+  EXPECT_EQ(linear_solver_of(o), "pcg-reduced");
+  for (const char* name : {"arkode-dirk", "arkode-imex"}) {
+    IntegratorOptions arkode;
+    arkode.name = name;
+    EXPECT_EQ(linear_solver_of(arkode), "pcg-reduced") << name;
+    EXPECT_EQ(linear_tolerance_of(arkode), 1e-8) << name;
+    arkode.linear_solver = "pcg-multigrid";
+    EXPECT_EQ(linear_solver_of(arkode), "pcg-multigrid") << name;
+  }
+}
+
+std::string error_of(const nlohmann::json& options) {
+  return testing::input_error_message(
+      [&] { read_integrator_options(options, "scene.json", "integrator"); });
+}
+
+TEST(IntegratorOptions, StepHalvingsDefaultToTenAndAreBounded) {
+  const nlohmann::json dirk = {{"name", "arkode-dirk"}, {"dt", 1e-3}};
+  EXPECT_EQ(read_integrator_options(dirk, "scene.json", "integrator").max_step_halvings, 10);
+  for (const int bad : {-1, 31}) {
+    nlohmann::json o = dirk;
+    o["max_step_halvings"] = bad;
+    EXPECT_EQ(error_of(o), "scene.json: integrator.max_step_halvings: must be between 0 and 30")
+        << bad;
+  }
+}
+
+// A key that the chosen integrator would ignore is an error naming it, like an unknown key.
+TEST(IntegratorOptions, KeysTheIntegratorDoesNotReadAreRejected) {
+  const struct {
+    nlohmann::json options;
+    const char* key;
+  } unused[] = {
+      {{{"name", "leapfrog"}, {"dt", 1e-4}, {"rtol", 1e-3}}, "rtol"},
+      {{{"name", "implicit-euler"}, {"dt", 1e-2}, {"atol", 1e-6}}, "atol"},
+      {{{"name", "arkode-erk"}, {"dt", 1e-4}, {"max_dt", 1e-3}}, "max_dt"},
+      {{{"name", "implicit-euler"}, {"dt", 1e-2}, {"max_newton_iters", 3}}, "max_newton_iters"},
+      {{{"name", "arkode-erk"}, {"dt", 1e-4}, {"max_step_halvings", 2}}, "max_step_halvings"},
+      {{{"name", "arkode-dirk"}, {"adaptive", true}, {"max_step_halvings", 2}},
+       "max_step_halvings"},
+      {{{"name", "symplectic-euler"}, {"dt", 1e-4}, {"linear_tolerance", 1e-6}},
+       "linear_tolerance"},
+      {{{"name", "arkode-erk"}, {"dt", 1e-4}, {"max_linear_iters", 9}}, "max_linear_iters"},
+  };
+  for (const auto& u : unused) {
+    const std::string prefix = "scene.json: integrator." + std::string(u.key) +
+                               ": not used by this run of '" +
+                               u.options["name"].get<std::string>() + "': only ";
+    EXPECT_EQ(error_of(u.options).rfind(prefix, 0), 0u) << error_of(u.options);
+  }
+  EXPECT_EQ(error_of({{"name", "leapfrog"}, {"dt", 1e-4}, {"rtol", 1e-3}}),
+            "scene.json: integrator.rtol: not used by this run of 'leapfrog': only the arkode-* "
+            "integrators read it");
+}
+
+TEST(IntegratorOptions, KeysAreAcceptedWhereTheyAreRead) {
+  const nlohmann::json used[] = {
+      {{"name", "arkode-erk"}, {"adaptive", true}, {"rtol", 1e-3}, {"atol", 1e-6}, {"max_dt", 1e-3}},
+      {{"name", "arkode-dirk"}, {"dt", 1e-3}, {"max_newton_iters", 4}, {"max_step_halvings", 2},
+       {"linear_tolerance", 1e-6}, {"max_linear_iters", 50}},
+      {{"name", "arkode-imex"}, {"adaptive", true}, {"max_newton_iters", 4}, {"max_dt", 1e-2}},
+      {{"name", "implicit-euler"}, {"dt", 1e-2}, {"linear_tolerance", 1e-4}, {"max_linear_iters", 50}},
+  };
+  for (const nlohmann::json& options : used)
+    EXPECT_EQ(error_of(options), "no error") << options.dump();
+}
+
+}  // namespace
+}  // namespace drape

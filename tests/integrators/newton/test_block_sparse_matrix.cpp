@@ -1,0 +1,69 @@
+// The block-row matrix against the same matrix held densely.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "integrators/newton/block_sparse_matrix.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace drape {
+namespace {
+
+// A 4-node chain with one long link (0, 3), random blocks.
+detail::BlockSparseMatrix chain(Eigen::MatrixXd& dense) {
+  detail::BlockSparseMatrix a;
+  a.set_pattern({{1, 3}, {0, 2}, {1}, {0}});
+  dense = Eigen::MatrixXd::Zero(12, 12);
+  const Eigen::VectorXd values =
+      testing::jitter(Eigen::VectorXd::Zero(9 * a.row_start(a.rows())), 1.0, 3);
+  for (int i = 0; i < a.rows(); ++i)
+    for (int k = a.row_start(i); k < a.row_start(i + 1); ++k) {
+      Mat3 block = Eigen::Map<const Mat3>(values.data() + 9 * k);
+      // Diagonal blocks strongly dominant, so that Gauss-Seidel's inverses exist.
+      if (a.column(k) == i) block += 10.0 * Mat3::Identity();
+      a.blocks()[static_cast<std::size_t>(k)] = block;
+      dense.block<3, 3>(3 * i, 3 * a.column(k)) = block;
+    }
+  a.invert_diagonal();
+  return a;
+}
+
+TEST(BlockSparseMatrix, PatternKeepsTheDiagonalFirstAndFindsBlocks) {
+  Eigen::MatrixXd dense;
+  const detail::BlockSparseMatrix a = chain(dense);
+  EXPECT_EQ(a.rows(), 4);
+  EXPECT_EQ(a.row_start(4), 10);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(a.column(a.row_start(i)), i);
+  EXPECT_EQ(a.find(0, 3), 2);
+  EXPECT_EQ(a.find(3, 0), 9);
+  EXPECT_EQ(a.find(0, 2), -1);
+}
+
+TEST(BlockSparseMatrix, ProductAndSweepsMatchTheDenseMatrix) {
+  Eigen::MatrixXd dense;
+  const detail::BlockSparseMatrix a = chain(dense);
+  const Eigen::VectorXd p = testing::jitter(Eigen::VectorXd::Zero(12), 1.0, 4);
+  const Eigen::VectorXd b = testing::jitter(Eigen::VectorXd::Zero(12), 1.0, 5);
+  Eigen::VectorXd out;
+  a.multiply(p, out);
+  EXPECT_LT((out - dense * p).norm(), 1e-13 * out.norm());
+
+  // Split by blocks: D the diagonal blocks, L and U the blocks below and above them.
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(12, 12), l = d, u = d;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      (i == j ? d : i > j ? l : u).block<3, 3>(3 * i, 3 * j) = dense.block<3, 3>(3 * i, 3 * j);
+  a.precondition_jacobi(b, out);
+  EXPECT_LT((d * out - b).norm(), 1e-13 * b.norm());
+  // A backward sweep solves (D + U) x_new = b - L x_old; the forward one from zero
+  // (D + L) x = b, and its residual is b - A x.
+  Eigen::VectorXd x = p, residual;
+  a.backward_sweep(b, x);
+  EXPECT_LT(((d + u) * x - (b - l * p)).norm(), 1e-12 * b.norm());
+  a.forward_sweep_from_zero(b, x, residual);
+  EXPECT_LT(((d + l) * x - b).norm(), 1e-12 * b.norm());
+  EXPECT_LT((residual - (b - dense * x)).norm(), 1e-12 * b.norm());
+}
+
+}  // namespace
+}  // namespace drape

@@ -1,0 +1,136 @@
+// The reduced 3N solve of (I - gamma J) z = r against a dense solve of the full 6N system.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "core/dummy/dummy.hpp"
+#include "integrators/newton/reduced_newton_solver.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace drape {
+namespace {
+
+// I - gamma J with J = [0 I; M^-1 K  M^-1 D] on the free rows and zero fixed rows, from the
+// same definite Jacobians the solver uses.
+Eigen::MatrixXd dense_newton_matrix(const ClothSystem& s, const Eigen::VectorXd& y, double gamma,
+                                    ForceSplit split) {
+  const Eigen::Index n3 = 3 * s.num_particles();
+  Eigen::SparseMatrix<double> dfdx, dfdv;
+  s.force_jacobians(y.head(n3), y.tail(n3), true, dfdx, dfdv, split);
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(2 * n3, 2 * n3);
+  j.block(0, n3, n3, n3).setIdentity();
+  for (const int i : s.constraints().fixed_particles()) j.block(3 * i, n3, 3, n3).setZero();
+  j.block(n3, 0, n3, n3) = Eigen::MatrixXd(dfdx) / s.particle_mass();
+  j.block(n3, n3, n3, n3) = Eigen::MatrixXd(dfdv) / s.particle_mass();
+  return Eigen::MatrixXd::Identity(2 * n3, 2 * n3) - gamma * j;
+}
+
+TEST(ReducedNewtonSolver, MatchesADenseSolveOfTheFullSystem) {
+  for (const ForceSplit split : {ForceSplit::all, ForceSplit::springs}) {
+    for (const ReducedSolve method : {ReducedSolve::conjugate_gradients, ReducedSolve::multigrid_cg,
+                                      ReducedSolve::sparse_ldlt}) {
+      auto s = testing::pinned_test_cloth(0.05, 0.01);
+      const Eigen::Index n3 = 3 * s->num_particles();
+      Eigen::VectorXd y = testing::jitter(s->initial_state(0.0), 0.003, 7);
+      const double gamma = 0.02;
+      const Eigen::VectorXd r = testing::jitter(Eigen::VectorXd::Zero(2 * n3), 1.0, 8);
+      ReducedNewtonSolver solver(*s, method, split, 1e-13, 500);
+      solver.update(y.head(n3), y.tail(n3), gamma);
+      Eigen::VectorXd z(2 * n3);
+      ASSERT_TRUE(solver.solve(r, z));
+      const Eigen::VectorXd expected =
+          dense_newton_matrix(*s, y, gamma, split).partialPivLu().solve(r);
+      EXPECT_LT((z - expected).norm(), 1e-10 * expected.norm());
+      // A fixed particle's rows are the identity.
+      EXPECT_EQ(z.segment<3>(0), r.segment<3>(0));
+      EXPECT_EQ(z.segment<3>(n3), r.segment<3>(n3));
+    }
+  }
+}
+
+TEST(ReducedNewtonSolver, NewGammaReusesTheJacobian) {
+  auto s = testing::pinned_test_cloth(0.05, 0.01);
+  const Eigen::Index n3 = 3 * s->num_particles();
+  const Eigen::VectorXd y = testing::jitter(s->initial_state(0.0), 0.003, 9);
+  const Eigen::VectorXd r = testing::jitter(Eigen::VectorXd::Zero(2 * n3), 1.0, 10);
+  ReducedNewtonSolver solver(*s, ReducedSolve::sparse_ldlt, ForceSplit::all, 1e-13, 500);
+  EXPECT_FALSE(solver.has_jacobian());
+  solver.update(y.head(n3), y.tail(n3), 0.01);
+  solver.set_gamma(0.05);
+  Eigen::VectorXd z(2 * n3);
+  ASSERT_TRUE(solver.solve(r, z));
+  const Eigen::VectorXd expected = dense_newton_matrix(*s, y, 0.05, ForceSplit::all).partialPivLu().solve(r);
+  EXPECT_LT((z - expected).norm(), 1e-10 * expected.norm());
+  solver.invalidate();
+  EXPECT_FALSE(solver.has_jacobian());
+}
+
+// A rows x cols cloth with the benchmark's stiffness and mass per particle (draped_cloth.hpp),
+// its horizontal springs compressed by 15% and the grid crumpled a little, top row pinned: the
+// hard start of the implicit-Euler benchmark (which has no bending springs).
+std::unique_ptr<ClothSystem> compressed_cloth(int rows, int cols, double k_bending,
+                                              Eigen::VectorXd& y) {
+  ClothParams p = testing::small_cloth(rows, cols);
+  p.spacing = 0.5 / cols;
+  p.particle_mass = 0.2 / (rows * cols);
+  p.k_structural = p.k_shear = 50.0;
+  p.k_bending = k_bending;
+  p.damping_spring = 0.01;
+  p.damping_air = 0.001;
+  auto s = std::make_unique<ClothSystem>(build_cloth(p), nullptr, ForceParams{});
+  y = s->initial_state(0.0);
+  const Eigen::Index n3 = 3 * s->num_particles();
+  for (Eigen::Index i = 0; i < s->num_particles(); ++i) y[3 * i] *= 0.85;
+  y.head(n3) = testing::jitter(y.head(n3), 0.05 * p.spacing, 11);
+  for (int c = 0; c < cols; ++c) s->constraints().fix_at(c, y.segment<3>(3 * c));
+  return s;
+}
+
+TEST(ReducedNewtonSolver, MultigridCgMatchesTheFactorisationOnALargerCloth) {
+  // Odd, unequal sides (aggregates of one or two particles at the edges) and bending springs
+  // (a coupling two particles apart).
+  Eigen::VectorXd y;
+  auto s = compressed_cloth(25, 19, 5.0, y);
+  const Eigen::Index n3 = 3 * s->num_particles();
+  const Eigen::VectorXd r = testing::jitter(Eigen::VectorXd::Zero(2 * n3), 1.0, 12);
+  Eigen::VectorXd z_cg(2 * n3), z_direct(2 * n3);
+  ReducedNewtonSolver cg(*s, ReducedSolve::multigrid_cg, ForceSplit::all, 1e-12, 200);
+  ReducedNewtonSolver direct(*s, ReducedSolve::sparse_ldlt, ForceSplit::all, 0.0, 1);
+  for (ReducedNewtonSolver* solver : {&cg, &direct})
+    solver->update(y.head(n3), y.tail(n3), 1.0 / 30.0);
+  ASSERT_TRUE(cg.solve(r, z_cg));
+  ASSERT_TRUE(direct.solve(r, z_direct));
+  EXPECT_LT((z_cg - z_direct).norm(), 1e-9 * z_direct.norm());
+}
+
+TEST(ReducedNewtonSolver, MultigridNeedsFarFewerIterationsThanBlockJacobi) {
+  Eigen::VectorXd y;
+  auto s = compressed_cloth(32, 32, 0.0, y);
+  const Eigen::Index n3 = 3 * s->num_particles();
+  // Implicit Euler's first right-hand side at 1/30 s, at the default tolerance 1e-3.
+  const double h = 1.0 / 30.0;
+  Eigen::VectorXd r(2 * n3), z(2 * n3);
+  s->rhs(0.0, y, r);
+  r *= h;
+  s->constraints().zero_fixed(r.head(n3));
+  s->constraints().zero_fixed(r.tail(n3));
+  long iterations[2];
+  for (const ReducedSolve method :
+       {ReducedSolve::conjugate_gradients, ReducedSolve::multigrid_cg}) {
+    ReducedNewtonSolver solver(*s, method, ForceSplit::all, 1e-3, 1000);
+    solver.update(y.head(n3), y.tail(n3), h);
+    ASSERT_TRUE(solver.solve(r, z));
+    iterations[method == ReducedSolve::multigrid_cg] = solver.iterations();
+  }
+  EXPECT_LT(4 * iterations[1], iterations[0]) << iterations[1] << " vs " << iterations[0];
+}
+
+TEST(ReducedNewtonSolver, LinearSolverNames) {
+  EXPECT_EQ(reduced_solve_named("pcg-reduced"), ReducedSolve::conjugate_gradients);
+  EXPECT_EQ(reduced_solve_named("pcg-multigrid"), ReducedSolve::multigrid_cg);
+  EXPECT_EQ(reduced_solve_named("sparse-direct"), ReducedSolve::sparse_ldlt);
+  EXPECT_FALSE(reduced_solve_named("klu"));
+}
+
+}  // namespace
+}  // namespace drape
