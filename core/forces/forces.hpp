@@ -1,7 +1,11 @@
 #pragma once
-// Force kernels of docs/model.md section 4: small stateless functions on fixed-size Eigen types. Each term gives
-// its energy, its force and the Jacobian blocks that implicit solvers need. The gather/scatter
-// over particles is in cloth_system.cpp.
+// Force kernels of docs/model.md section 4: small stateless functions on fixed-size Eigen types.
+// Each term gives its energy, its force and the Jacobian blocks that implicit solvers need. The
+// gather/scatter over particles is in core/model/cloth_system.cpp.
+//
+// The spring force that runs in every step is spring_force() below evaluated stencil by stencil
+// over the grid in packets: spring_kernel_impl.hpp beside this file (called from
+// grid_spring_forces.cpp); tests/core/forces/test_grid_spring_forces.cpp checks the two agree.
 //
 // Convention: for a pair (i, j), d = x_j - x_i, L = |d|, u = d / L. A kernel returns the force on
 // i; j feels the opposite. The Jacobian blocks are J = dF_i/dx_j = -dF_i/dx_i (and the same for
