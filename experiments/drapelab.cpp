@@ -9,6 +9,7 @@
 #include "core/scene.hpp"
 #include "experiments/experiment_cli.hpp"
 #include "experiments/run_scene.hpp"
+#include "experiments/viewer/view_command.hpp"
 #include "integrators/registry.hpp"
 
 namespace {
@@ -63,6 +64,7 @@ int main(int argc, char** argv) {
   convert->add_option("out", convert_out, "drapelab recording (.jsonl) to write")->required();
 
   const drape::ExperimentCommands experiment_commands(app);
+  drape::add_view_command(app);  // runs inside app.parse (docs/viewer.md)
 
   try {
     app.parse(argc, argv);
