@@ -98,7 +98,8 @@ void read_hands(const fs::path& file, ViewerRun& run, int particles) {
     for (const int c : {5, 6})
       if (table.at(r, c) < -1 || table.at(r, c) >= particles)
         throw InputError(table.file(), "line " + std::to_string(r + 2),
-                         "particle index out of range: " + std::to_string(table.at(r, c)));
+                         "particle index out of range: " +
+                             std::to_string(static_cast<long long>(table.at(r, c))));
     hand->t.push_back(table.at(r, 0));
     hand->available.push_back(static_cast<int>(table.at(r, 1)));
     for (int k = 0; k < 3; ++k) hand->positions.push_back(static_cast<float>(table.at(r, 2 + k)));

@@ -121,7 +121,7 @@ drape.RunView.prototype.add_cloth = function () {
   grid_geometry.setIndex(lines);
   grid_geometry.setAttribute('position', this.cloth_position);
   this.grid = new THREE.LineSegments(grid_geometry, new THREE.LineBasicMaterial(
-    { color: drape.colours.grid, transparent: true, opacity: 0.22 }));
+    { color: drape.colours.grid, transparent: true, opacity: 0.22 * Math.min(1, 24 / Math.max(rows, cols)) }));
   this.scene.add(this.grid);
 };
 
@@ -198,7 +198,7 @@ drape.RunView.prototype.hand_mesh = function (name) {
     var colour = name === 'left' ? drape.colours.left_hand : drape.colours.right_hand;
     // Translucent, so that the particle the hand holds shows inside it.
     var mesh = new THREE.Mesh(new THREE.SphereBufferGeometry(0.016, 20, 14), new THREE.MeshPhongMaterial(
-      { color: colour, shininess: 40, transparent: true, opacity: 0.45, depthWrite: false }));
+      { color: colour, shininess: 40, transparent: true, opacity: 0.55, depthWrite: false }));
     mesh.renderOrder = 1;
     this.scene.add(mesh);
     this.hand_meshes[name] = mesh;
