@@ -213,9 +213,25 @@
       }
       renders.push({ t: self.t, nonbackground: count, per_view: per_view, checksum: hash.toString(16) });
     });
-    return { ok: true, three: THREE.REVISION, width: w, height: h, renders: renders,
+    return { ok: true, three: THREE.REVISION, width: w, height: h, renders: renders, ui: this.ui_check(),
              milliseconds: Math.round(performance.now()),
              runs: this.runs.map(function (r) { return { name: r.name, frames: r.frames.count }; }) };
+  };
+
+  // The controls as a user drives them: the slider, play for 0.5 s of (synthetic) clock at
+  // 1x, and the side camera button. Headless chromium runs requestAnimationFrame only once,
+  // so the check calls tick() itself.
+  Viewer.prototype.ui_check = function () {
+    this.slider.value = '0.2';
+    this.slider.dispatchEvent(new Event('input'));
+    var slider_t = this.t;
+    this.set_playing(true);
+    this.tick(1000);
+    this.tick(1500);
+    this.set_playing(false);
+    var played = this.t - slider_t;
+    document.querySelector('[data-camera="side"]').click();
+    return { slider_t: slider_t, played: played, camera: this.camera_kind };
   };
 
   function write_test_result(result) {
@@ -230,8 +246,8 @@
     var data = JSON.parse(document.getElementById('drape-data').textContent);
     var viewer = new Viewer(data.runs, options);
     window.drape.viewer = viewer;
+    viewer.connect();
     if (options.test) write_test_result(viewer.test_report());
-    else viewer.connect();
   } catch (e) {
     console.error('drapelab view: ' + (e && e.stack ? e.stack : e));
     if (options.test) write_test_result({ ok: false });

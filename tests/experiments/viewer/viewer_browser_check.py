@@ -4,8 +4,9 @@
 Runs a tiny hold scene twice with a trace (leap-frog and implicit Euler), writes their page
 with `drapelab view`, opens it in headless chromium with the page's test hook
 (#test&t=A&t=B), and checks what the page wrote into its DOM: no errors, a picture in each
-run's viewport, and different pictures at the two times. Also checks that `drapelab view`
-refuses a folder that is not a run, and a malformed trace, with exit status 2.
+run's viewport, different pictures at the two times, and that the slider, play and a camera
+button act. Also checks that `drapelab view` refuses a folder that is not a run, and a
+malformed trace, with exit status 2.
 
 Usage: viewer_browser_check.py DRAPELAB SOURCE_DIR WORK_DIR   (exit 77: no chromium, skipped)
 """
@@ -96,6 +97,9 @@ def main():
                 fail(f"t = {r['t']}: the viewport of {name} is nearly blank ({count} pixels)")
     if renders[0]["checksum"] == renders[1]["checksum"]:
         fail(f"the pictures at t = {TIMES[0]} and {TIMES[1]} are the same")
+    ui = result["ui"]
+    if abs(ui["slider_t"] - 0.2) > 1e-9 or abs(ui["played"] - 0.5) > 1e-9 or ui["camera"] != "side":
+        fail("the slider, play or camera buttons do not work: " + json.dumps(ui))
     print(f"OK: {len(renders)} pictures, {page.stat().st_size / 1e6:.2f} MB page")
     return 0
 
