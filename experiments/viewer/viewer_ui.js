@@ -145,7 +145,7 @@ drape.EnergyPlot.prototype.draw = function () {
   var g = canvas.getContext('2d');
   g.setTransform(ratio, 0, 0, ratio, 0, 0);
   g.clearRect(0, 0, w, h);
-  var inset = 8, top = 6, bottom = 20;  // the slider's thumb half-width: same time axis
+  var inset = 8, top = 12, bottom = 20;  // the slider's thumb half-width: same time axis
   var x0 = inset, x1 = w - inset, y0 = h - bottom, y1 = top, duration = this.duration;
   var self = this, lo = Infinity, hi = -Infinity, all = this.runs.map(function (r) { return self.series(r); });
   all.forEach(function (s) { s.forEach(function (v) { if (v < lo) lo = v; if (v > hi) hi = v; }); });
