@@ -52,10 +52,11 @@ std::string viewer_page(const std::vector<ViewerRun>& runs) {
   std::string page(detail::viewer_page_html);
   replace_mark(page, "<!-- drape:css -->",
                "<style>\n" + std::string(detail::viewer_css) + "</style>");
-  replace_mark(
-      page, "<!-- drape:three -->",
-      script(three_file(detail::three_js, "three.min.js")) +
-          script(three_file(detail::orbit_controls_js, "examples/js/controls/OrbitControls.js")));
+  // One after the other, so that a missing three.min.js is the file named.
+  const std::string three = three_file(detail::three_js, "three.min.js");
+  const std::string orbit =
+      three_file(detail::orbit_controls_js, "examples/js/controls/OrbitControls.js");
+  replace_mark(page, "<!-- drape:three -->", script(three) + script(orbit));
   replace_mark(page, "<!-- drape:scripts -->",
                script(std::string(detail::viewer_scene_js)) +
                    script(std::string(detail::viewer_ui_js)) +
