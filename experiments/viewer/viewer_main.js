@@ -40,6 +40,7 @@
     this.camera = new THREE.PerspectiveCamera(30, 1, 0.01, 100);
     this.controls = new THREE.OrbitControls(this.camera, this.canvas);
     this.controls.enableDamping = false;
+    this.controls.enableKeys = false;  // the arrow keys step frames
     this.controls.addEventListener('change', function () { self.dirty = true; });
     this.bounds = new THREE.Box3();
     this.views.forEach(function (v) {
@@ -177,7 +178,9 @@
     window.addEventListener('mousemove', function (e) { if (dragging) seek(e); });
     window.addEventListener('mouseup', function () { dragging = false; });
     window.addEventListener('keydown', function (e) {
-      if (e.target.tagName === 'SELECT') return;
+      // Focused controls keep their own keys: space presses a button, arrows move the slider.
+      var tag = e.target.tagName;
+      if (tag === 'SELECT' || tag === 'INPUT' || (tag === 'BUTTON' && e.key === ' ')) return;
       if (e.key === ' ') { self.set_playing(!self.playing); e.preventDefault(); }
       else if (e.key === 'ArrowLeft' || e.key === 'ArrowRight') {
         self.set_playing(false);
