@@ -201,6 +201,11 @@ drape.RunView.prototype.hand_mesh = function (name) {
       { color: colour, shininess: 40, transparent: true, opacity: 0.55, depthWrite: false }));
     mesh.renderOrder = 1;
     this.scene.add(mesh);
+    // A line from the hand to its candidate or held particle: which hand a marker belongs to.
+    var link = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]),
+                              new THREE.LineBasicMaterial({ color: colour, transparent: true, opacity: 0.8 }));
+    this.scene.add(link);
+    mesh.userData.link = link;
     this.hand_meshes[name] = mesh;
   }
   return this.hand_meshes[name];
@@ -231,10 +236,21 @@ drape.RunView.prototype.set_time = function (t) {
     var hand = hands[h], mesh = this.hand_mesh(hand.name);
     var r = drape.last_at_or_before(hand.t, t);
     mesh.visible = hand.t.length > 0 && hand.available[r] === 1;
-    if (!mesh.visible) continue;
-    mesh.position.set(hand.positions[3 * r], hand.positions[3 * r + 1], hand.positions[3 * r + 2]);
-    if (hand.held[r] >= 0) held.push(hand.held[r]);
-    else if (hand.candidate[r] >= 0) candidates.push(hand.candidate[r]);
+    var link = mesh.userData.link, target = -1;
+    if (mesh.visible) {
+      mesh.position.set(hand.positions[3 * r], hand.positions[3 * r + 1], hand.positions[3 * r + 2]);
+      target = hand.held[r] >= 0 ? hand.held[r] : hand.candidate[r];
+      if (hand.held[r] >= 0) held.push(hand.held[r]);
+      else if (hand.candidate[r] >= 0) candidates.push(hand.candidate[r]);
+    }
+    link.visible = target >= 0;
+    if (link.visible) {
+      var ends = link.geometry.getAttribute('position');
+      ends.setXYZ(0, mesh.position.x, mesh.position.y, mesh.position.z);
+      ends.setXYZ(1, pos[3 * target], pos[3 * target + 1], pos[3 * target + 2]);
+      ends.needsUpdate = true;
+      link.geometry.computeBoundingSphere();
+    }
   }
   other = other.filter(function (p) { return held.indexOf(p) < 0; });
   this.place_markers('pinned', pinned);
