@@ -154,6 +154,7 @@ nlohmann::json page_data(const ViewerRun& run) {
       {"integrator", s.value("integrator", std::string("?"))},
       {"table", s.contains("table") && s["table"].is_string() ? s["table"] : nlohmann::json("")},
       {"dt", s.contains("dt") ? s["dt"] : nlohmann::json(nullptr)},
+      {"adaptive", s.value("adaptive", false)},
       {"duration", s.value("duration", 0.0)},
       {"sim_time", s.value("sim_time", 0.0)},
       {"description", s.contains("scene") ? s["scene"].value("description", std::string()) : ""},

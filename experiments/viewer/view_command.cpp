@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -17,6 +18,15 @@ namespace drape {
 void view_command(const std::vector<std::string>& run_dirs, const std::string& out_file) {
   std::vector<ViewerRun> runs;
   for (const std::string& dir : run_dirs) runs.push_back(read_viewer_run(dir));
+  // Folders of the same name (out/a/run, out/b/run) are told apart by their parent's name.
+  std::vector<std::string> names;
+  for (const ViewerRun& run : runs) names.push_back(run.name);
+  for (size_t i = 0; i < runs.size(); ++i)
+    if (std::count(names.begin(), names.end(), names[i]) > 1) {
+      std::filesystem::path dir = std::filesystem::absolute(run_dirs[i]).lexically_normal();
+      if (dir.filename().empty()) dir = dir.parent_path();  // a trailing slash
+      runs[i].name = dir.parent_path().filename().string() + "/" + names[i];
+    }
   const std::string page = viewer_page(runs);
   const std::filesystem::path out(out_file);
   if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());

@@ -18,6 +18,7 @@ drape.element = function (tag, class_name, text) {
 
 drape.run_title = function (run) {
   var method = run.integrator + (run.table ? ' ' + run.table : '');
+  if (run.adaptive) return method + ', adaptive steps';
   return method + (run.dt ? ', dt = ' + +(run.dt * 1000).toPrecision(4) + ' ms' : '');
 };
 
