@@ -11,6 +11,7 @@
 #include "experiments/cli/run_stats.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "integrators/interface/registry.hpp"
+#include "experiments/viewer/view_command.hpp"
 
 namespace {
 
@@ -69,6 +70,7 @@ int main(int argc, char** argv) {
   convert->add_option("out", convert_out, "drapelab recording (.jsonl) to write")->required();
 
   const drape::ExperimentCommands experiment_commands(app);
+  drape::add_view_command(app);  // runs inside app.parse (docs/viewer.md)
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,37 @@
+#pragma once
+// A numeric CSV file with a header line, as a run writes them (docs/outputs.md), read strictly:
+// a missing column, a short row or a field that is not a number is an InputError naming the
+// file and the line.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace drape {
+
+/// The columns a caller asked for, row by row.
+class CsvTable {
+ public:
+  /// Reads `file`, keeping the numeric `columns` and the `text_columns` (all must be in the
+  /// header; others are ignored).
+  CsvTable(const std::filesystem::path& file, const std::vector<std::string>& columns,
+           const std::vector<std::string>& text_columns = {});
+
+  int rows() const { return m_rows; }
+  /// Value of the c-th requested column in row r.
+  double at(int r, int c) const { return m_values[static_cast<size_t>(r) * m_width + c]; }
+  /// Value of the c-th requested text column in row r.
+  const std::string& text(int r, int c) const {
+    return m_text[static_cast<size_t>(r) * m_text_width + c];
+  }
+  const std::string& file() const { return m_file; }
+
+ private:
+  std::string m_file;
+  size_t m_width = 0;
+  int m_rows = 0;
+  size_t m_text_width = 0;
+  std::vector<double> m_values;
+  std::vector<std::string> m_text;
+};
+
+}  // namespace drape

@@ -1,0 +1,179 @@
+#include "experiments/viewer/viewer_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/scene/input_error.hpp"
+#include "core/scene/json_reader.hpp"
+#include "experiments/viewer/csv_table.hpp"
+
+namespace drape {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A count or an index read from the scene: an integer within [low, high].
+int scene_integer(const nlohmann::json& value, const std::string& file, const std::string& field,
+                  int low, int high) {
+  if (!value.is_number_integer() || value.get<long long>() < low || value.get<long long>() > high)
+    throw InputError(file, field,
+                     "expected an integer in [" + std::to_string(low) + ", " +
+                         std::to_string(high) + "], got " + value.dump());
+  return value.get<int>();
+}
+
+// Frames of trace.csv: rows grouped by time, every particle once a frame, in index order.
+std::vector<ViewerFrame> read_trace(const fs::path& file, int particles) {
+  const CsvTable table(file, {"t", "index", "x", "y", "z", "fixed", "event"});
+  if (table.rows() % particles != 0)
+    throw InputError(table.file(), "",
+                     std::to_string(table.rows()) + " rows are not whole frames of " +
+                         std::to_string(particles) + " particles");
+  std::vector<ViewerFrame> frames(table.rows() / particles);
+  for (size_t f = 0; f < frames.size(); ++f) {
+    ViewerFrame& frame = frames[f];
+    const int first = static_cast<int>(f) * particles;
+    frame.t = table.at(first, 0);
+    frame.positions.resize(3 * static_cast<size_t>(particles));
+    for (int i = 0; i < particles; ++i) {
+      const int r = first + i;
+      if (table.at(r, 1) != i || table.at(r, 0) != frame.t)
+        throw InputError(table.file(), "line " + std::to_string(r + 2),
+                         "expected particle " + std::to_string(i) +
+                             " of the frame at t = " + std::to_string(frame.t));
+      for (int k = 0; k < 3; ++k)
+        frame.positions[3 * i + k] = static_cast<float>(table.at(r, 2 + k));
+      if (table.at(r, 5) != 0.0) frame.fixed.push_back(i);
+      frame.event = frame.event || table.at(r, 6) != 0.0;
+    }
+  }
+  return frames;
+}
+
+// The final state as a single frame at the summary's simulated time.
+ViewerFrame read_state(const fs::path& file, int particles, double t) {
+  const CsvTable table(file, {"index", "x", "y", "z", "fixed"});
+  if (table.rows() != particles)
+    throw InputError(table.file(), "",
+                     std::to_string(table.rows()) + " rows, expected " + std::to_string(particles) +
+                         " particles (rows x cols of the scene)");
+  ViewerFrame frame;
+  frame.t = t;
+  frame.positions.resize(3 * static_cast<size_t>(particles));
+  for (int i = 0; i < particles; ++i) {
+    if (table.at(i, 0) != i)
+      throw InputError(table.file(), "line " + std::to_string(i + 2),
+                       "expected particle " + std::to_string(i));
+    for (int k = 0; k < 3; ++k) frame.positions[3 * i + k] = static_cast<float>(table.at(i, 1 + k));
+    if (table.at(i, 4) != 0.0) frame.fixed.push_back(i);
+  }
+  return frame;
+}
+
+void read_dummy(const fs::path& file, ViewerRun& run) {
+  const CsvTable table(file, {"section", "point", "x", "y", "z"});
+  for (int r = 0; r < table.rows(); ++r) {
+    run.dummy_sections = std::max(run.dummy_sections, static_cast<int>(table.at(r, 0)) + 1);
+    run.dummy_points = std::max(run.dummy_points, static_cast<int>(table.at(r, 1)) + 1);
+    for (int k = 0; k < 3; ++k)
+      run.dummy_positions.push_back(static_cast<float>(table.at(r, 2 + k)));
+  }
+  if (static_cast<long long>(run.dummy_sections) * run.dummy_points != table.rows())
+    throw InputError(
+        table.file(), "",
+        "sections x points is not the number of rows (" + std::to_string(table.rows()) + ")");
+}
+
+void read_hands(const fs::path& file, ViewerRun& run, int particles) {
+  const CsvTable table(file, {"t", "available", "x", "y", "z", "candidate", "held"}, {"hand"});
+  for (int r = 0; r < table.rows(); ++r) {
+    const std::string& name = table.text(r, 0);
+    auto hand = std::find_if(run.hands.begin(), run.hands.end(),
+                             [&](const ViewerHand& h) { return h.name == name; });
+    if (hand == run.hands.end()) {
+      run.hands.push_back(ViewerHand{name, {}, {}, {}, {}, {}});
+      hand = run.hands.end() - 1;
+    }
+    for (const int c : {5, 6})
+      if (table.at(r, c) < -1 || table.at(r, c) >= particles)
+        throw InputError(table.file(), "line " + std::to_string(r + 2),
+                         "particle index out of range: " +
+                             std::to_string(static_cast<long long>(table.at(r, c))));
+    hand->t.push_back(table.at(r, 0));
+    hand->available.push_back(static_cast<int>(table.at(r, 1)));
+    for (int k = 0; k < 3; ++k) hand->positions.push_back(static_cast<float>(table.at(r, 2 + k)));
+    hand->candidate.push_back(static_cast<int>(table.at(r, 5)));
+    hand->held.push_back(static_cast<int>(table.at(r, 6)));
+  }
+}
+
+void read_energy(const fs::path& file, ViewerRun& run) {
+  const CsvTable table(file, {"t", "kinetic", "total"});
+  for (int r = 0; r < table.rows(); ++r) {
+    run.energy_t.push_back(table.at(r, 0));
+    run.energy_kinetic.push_back(table.at(r, 1));
+    run.energy_total.push_back(table.at(r, 2));
+  }
+}
+
+}  // namespace
+
+ViewerRun read_viewer_run(const fs::path& dir) {
+  ViewerRun run;
+  run.name = fs::absolute(dir).lexically_normal().filename().string();
+  if (run.name.empty())
+    run.name = fs::absolute(dir).lexically_normal().parent_path().filename().string();
+  if (!fs::is_directory(dir)) throw InputError(dir.string(), "", "not a folder");
+  const fs::path summary_file = dir / "summary.json";
+  if (!fs::is_regular_file(summary_file))
+    throw InputError(dir.string(), "",
+                     "not a run folder: no summary.json (drapelab run writes it)");
+  run.summary = read_json_file(summary_file.string());
+  const std::string sfile = summary_file.string();
+  if (!run.summary.is_object() || !run.summary.contains("scene") ||
+      !run.summary["scene"].is_object() || !run.summary["scene"].contains("cloth"))
+    throw InputError(sfile, "scene.cloth", "missing: the scene as run is needed for the grid");
+  const nlohmann::json& cloth = run.summary["scene"]["cloth"];
+  run.rows =
+      scene_integer(cloth.value("rows", nlohmann::json()), sfile, "scene.cloth.rows", 1, 1 << 15);
+  run.cols =
+      scene_integer(cloth.value("cols", nlohmann::json()), sfile, "scene.cloth.cols", 1, 1 << 15);
+  const int particles = run.rows * run.cols;
+  if (run.summary.contains("scene") && run.summary["scene"].contains("pins")) {
+    const nlohmann::json& pins = run.summary["scene"]["pins"];
+    for (size_t p = 0; p < pins.size(); ++p) {
+      const std::string field = "scene.pins[" + std::to_string(p) + "]";
+      if (!pins[p].is_array() || pins[p].size() != 2)
+        throw InputError(sfile, field, "expected [row, col]");
+      scene_integer(pins[p][0], sfile, field, 0, run.rows - 1);
+      scene_integer(pins[p][1], sfile, field, 0, run.cols - 1);
+    }
+  }
+  if (!run.summary.contains("events")) run.summary["events"] = nlohmann::json::array();
+  if (!run.summary["events"].is_array()) throw InputError(sfile, "events", "expected an array");
+
+  if (fs::is_regular_file(dir / "trace.csv")) {
+    run.source = "trace.csv";
+    run.frames = read_trace(dir / "trace.csv", particles);
+  } else if (fs::is_regular_file(dir / "state.csv")) {
+    run.source = "state.csv";
+    run.frames.push_back(
+        read_state(dir / "state.csv", particles, run.summary.value("sim_time", 0.0)));
+  }
+  // A diverged run's last frames may hold non-finite values: the page shows the finite ones.
+  while (!run.frames.empty() &&
+         !std::all_of(run.frames.back().positions.begin(), run.frames.back().positions.end(),
+                      [](float x) { return std::isfinite(x); }))
+    run.frames.pop_back();
+  if (run.frames.empty())
+    throw InputError(dir.string(), "",
+                     "no cloth to show: neither trace.csv nor state.csv with finite positions "
+                     "(a diverged run writes no state.csv; rerun with output.trace_interval > 0)");
+  if (fs::is_regular_file(dir / "dummy.csv")) read_dummy(dir / "dummy.csv", run);
+  if (fs::is_regular_file(dir / "hands.csv")) read_hands(dir / "hands.csv", run, particles);
+  if (fs::is_regular_file(dir / "energy.csv")) read_energy(dir / "energy.csv", run);
+  return run;
+}
+
+}  // namespace drape

@@ -1,0 +1,110 @@
+#!/usr/bin/env python3
+"""`drapelab view` in a real browser (docs/viewer.md, Browser check).
+
+Runs a tiny hold scene twice with a trace (leap-frog and implicit Euler), writes their page
+with `drapelab view`, opens it in headless chromium with the page's test hook
+(#test&t=A&t=B), and checks what the page wrote into its DOM: no errors, a picture in each
+run's viewport, different pictures at the two times, and that the slider, play and a camera
+button act. Also checks that `drapelab view` refuses a folder that is not a run, and a
+malformed trace, with exit status 2.
+
+Usage: viewer_browser_check.py DRAPELAB SOURCE_DIR WORK_DIR   (exit 77: no chromium, skipped)
+"""
+import html
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+# The flags that give WebGL in Debian 12's headless chromium without a GPU: ANGLE on
+# SwiftShader (software rendering), which chromium only keeps using for WebGL when told it is
+# fine. No host name resolves, so a page that needed the network would fail the check.
+CHROMIUM_FLAGS = ["--headless=new", "--no-sandbox", "--use-angle=swiftshader",
+                  "--enable-unsafe-swiftshader", "--hide-scrollbars", "--window-size=800,600",
+                  "--host-resolver-rules=MAP * ~NOTFOUND"]
+TIMES = (0.1, 0.7)  # before and after the hold at about 0.4 s
+
+
+def fail(message):
+    print("FAIL: " + message)
+    sys.exit(1)
+
+
+def run(command, expect=0):
+    result = subprocess.run(command, capture_output=True, text=True, timeout=120)
+    if result.returncode != expect:
+        fail(f"{' '.join(map(str, command))}: exit {result.returncode}, expected {expect}\n"
+             f"{result.stdout}{result.stderr}")
+    return result
+
+
+def find_chromium():
+    for name in (os.environ.get("CHROMIUM"), "chromium", "chromium-browser", "google-chrome"):
+        if name and shutil.which(name):
+            return shutil.which(name)
+    return None
+
+
+def main():
+    drapelab, source, work = sys.argv[1], Path(sys.argv[2]), Path(sys.argv[3])
+    chromium = find_chromium()
+    if not chromium:
+        print("SKIP: no chromium (Debian: apt install chromium; install_dependencies.sh does)")
+        return 77
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    scene = source / "experiments" / "scenes" / "fig2_hold.json"
+    common = ["--set", "duration=0.8", "--set", "output.trace_interval=0.05"]
+    run([drapelab, "run", scene, "--out", work / "leapfrog"] + common)
+    run([drapelab, "run", scene, "--out", work / "implicit_euler"] + common +
+        ["--set", "integrator.name=implicit-euler", "--set", "integrator.dt=0.002"])
+
+    # Not a run, and a malformed trace: exit 2, the message names the folder / the file.
+    message = run([drapelab, "view", work, "--out", work / "x.html"], expect=2).stderr
+    if f"{work}: not a run folder" not in message:
+        fail("not a run: message does not name the folder: " + message)
+    shutil.copytree(work / "leapfrog", work / "broken")
+    trace = (work / "broken" / "trace.csv").read_text().splitlines()
+    trace[5] = trace[5].replace(",", ",x", 1)
+    (work / "broken" / "trace.csv").write_text("\n".join(trace) + "\n")
+    message = run([drapelab, "view", work / "broken", "--out", work / "x.html"], expect=2).stderr
+    if f"{work / 'broken' / 'trace.csv'}: line 6: column 'index' is not a number" not in message:
+        fail("malformed trace: message does not name the file and line: " + message)
+
+    page = work / "page.html"
+    run([drapelab, "view", work / "leapfrog", work / "implicit_euler", "--out", page])
+    url = page.resolve().as_uri() + "#test&" + "&".join(f"t={t}" for t in TIMES)
+    dom = run([chromium] + CHROMIUM_FLAGS + ["--dump-dom", url]).stdout
+    (work / "dom.html").write_text(dom)
+    found = re.search(r'<pre id="test-result"[^>]*>(.*?)</pre>', dom, re.S)
+    errors = re.search(r'<div id="errors"[^>]*>(.*?)</div>', dom, re.S)
+    if errors and errors.group(1).strip():
+        fail("the page reported errors:\n" + html.unescape(errors.group(1)))
+    if not found or not found.group(1).strip():
+        fail(f"the page wrote no test result (see {work / 'dom.html'})")
+    result = json.loads(html.unescape(found.group(1)))
+    print(json.dumps(result))
+    if not result.get("ok") or result.get("errors"):
+        fail("the page's test hook failed: " + json.dumps(result))
+    pixels = result["width"] * result["height"]
+    renders = result["renders"]
+    for r in renders:
+        if r["nonbackground"] < 0.02 * pixels:
+            fail(f"t = {r['t']}: canvas nearly blank ({r['nonbackground']} of {pixels} pixels)")
+        for name, count in zip((x["name"] for x in result["runs"]), r["per_view"]):
+            if count < 0.01 * pixels:
+                fail(f"t = {r['t']}: the viewport of {name} is nearly blank ({count} pixels)")
+    if renders[0]["checksum"] == renders[1]["checksum"]:
+        fail(f"the pictures at t = {TIMES[0]} and {TIMES[1]} are the same")
+    ui = result["ui"]
+    if abs(ui["slider_t"] - 0.2) > 1e-9 or abs(ui["played"] - 0.5) > 1e-9 or ui["camera"] != "side":
+        fail("the slider, play or camera buttons do not work: " + json.dumps(ui))
+    print(f"OK: {len(renders)} pictures, {page.stat().st_size / 1e6:.2f} MB page")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
