@@ -106,8 +106,9 @@ def energy_vs_time(directory, out_dir, rows, parameters):
                              squeeze=False, sharex=True)
     for ax, (name, runs) in zip(axes[:, 0], sorted(by_integrator.items())):
         for row, run in runs:
-            energy = runfiles.read_table(run / "energy.csv")
-            rel = np.abs(energy["total"] - energy["total"][0]) / max(abs(energy["total"][0]), 1e-300)
+            energy = runfiles.read_energy(run / "energy.csv")
+            total = energy["total"].to_numpy()
+            rel = np.abs(total - total[0]) / max(abs(total[0]), 1e-300)
             ax.plot(energy["t"], np.maximum(rel, 1e-17), lw=0.8,
                     label=label(row, parameters, INTEGRATOR_DETAIL, with_scene=scenes))
         ax.set_yscale("log")
@@ -146,7 +147,7 @@ def event_times(directory, row):
     path = runfiles.run_dir(directory, row) / "summary.json"
     if not path.exists():
         return []
-    return [(float(e["t"]), e["type"]) for e in runfiles.read_json(path).get("events", [])
+    return [(float(e["t"]), e["type"]) for e in runfiles.read_summary(path.parent).get("events", [])
             if e.get("type") != "ignored"]
 
 
@@ -164,7 +165,7 @@ def energy_by_scene(directory, out_dir, rows, parameters):
     fig, axes = plt.subplots(len(by_scene), 1, figsize=(8, 2.9 * len(by_scene)), squeeze=False)
     for ax, (name, runs) in zip(axes[:, 0], by_scene.items()):
         for row, run in runs:
-            energy = runfiles.read_table(run / "energy.csv")
+            energy = runfiles.read_energy(run / "energy.csv")
             style = (dict(c="k", lw=1.6, ls="--") if row.get("is_reference") else
                      dict(lw=0.9, c=integrator_color(row),
                           ls="-" if row is min((r for r, _ in runs if integrator_color(r) == integrator_color(row)),
@@ -172,7 +173,7 @@ def energy_by_scene(directory, out_dir, rows, parameters):
             text = method_label(row) + (" (reference)" if row.get("is_reference") else "")
             if row.get("status") not in (None, "ok"):
                 text += f" [{row.get('status')}]"
-            ax.plot(energy["t"], 1e3 * (energy["total"] - energy["total"][0]), label=text, **style)
+            ax.plot(energy["t"], 1e3 * (energy["total"] - energy["total"].iloc[0]), label=text, **style)
         for t, kind in event_times(directory, runs[0][0]):
             ax.axvline(t, c="0.5", lw=0.6, ls=":")
             ax.text(t, 1.0, " " + kind, transform=ax.get_xaxis_transform(), fontsize=7, va="top")
@@ -297,7 +298,7 @@ def snapshots(directory, out_dir, rows):
         run = runfiles.run_dir(directory, row)
         if len(stems) >= MAX_SNAPSHOT_RUNS or not (run / "trace.csv").exists():
             continue
-        trace = runfiles.read_trace(run / "trace.csv")
+        trace = runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))
         frames = np.unique(np.append(np.nonzero(trace["event"])[0], len(trace["t"]) - 1))
         dummy = runfiles.read_table(run / "dummy.csv") if (run / "dummy.csv").exists() else None
         fig, axes = plt.subplots(2, len(frames), figsize=(2.6 * len(frames), 6.5), squeeze=False)
