@@ -151,19 +151,20 @@ def energy_by_scene(directory, out_dir, rows, parameters):
     for ax, (name, runs) in zip(axes[:, 0], by_scene.items()):
         ranks = {}  # step ranks per integrator: two steps of one method never look alike
         for row, _ in runs:
-            ranks.setdefault(row.get("integrator"), []).append(row)
+            if not row.get("is_reference"):
+                ranks.setdefault(row.get("integrator"), []).append(row)
         ranks = {key: step_ranks(group) for key, group in ranks.items()}
         for row, run in runs:
             energy = runfiles.read_energy(run / "energy.csv")
             line = (dict(c="k", lw=1.6, ls="--") if row.get("is_reference") else
                     dict(lw=1.0, c=integrator_color(row),
-                         ls=style.LINE_STYLES[ranks[row.get("integrator")][step(row)] % 6]))
+                         ls=style.LINE_STYLES[ranks[row.get("integrator")][step(row)] % len(style.LINE_STYLES)]))
             text = method_label(row) + (" (reference)" if row.get("is_reference") else "")
             if row.get("status") not in (None, "ok"):
                 text += f" [{row.get('status')}]"
             ax.plot(energy["t"], 1e3 * (energy["total"] - energy["total"].iloc[0]), label=text, **line)
-        style.mark_events(ax, [(t, kind) for t, kind in event_times(directory, runs[0][0])])
         ax.set_title(name)
+        style.mark_events(ax, event_times(directory, runs[0][0]))
         ax.set_ylabel("E(t) - E(0) [mJ]")
     style.legend_beside(axes[0, 0])
     axes[-1, 0].set_xlabel("t [s]")
@@ -199,12 +200,12 @@ def work_precision(out_dir, rows, parameters):
             for series_name, points in sorted(groups.items()):
                 points.sort()
                 xs, ys, dts = zip(*points)
-                line, = ax.plot(xs, ys, "o-", label=series_name, color=colors[series_name])
-                for k, (x, y, dt) in enumerate(points):  # alternate sides so neighbours part
-                    ax.annotate(f"{dt}", (x, y), fontsize=style.MIN_FONT, xytext=(4, 4 if k % 2 else -10),
-                                textcoords="offset points", color=line.get_color())
+                ax.plot(xs, ys, "o-", label=series_name, color=colors[series_name])
             ax.set_xscale("log")
             ax.set_yscale("log")
+            for series_name, points in sorted(groups.items()):  # step sizes, clear of each other
+                style.place_labels(ax, [(x, y) for x, y, _ in points], [f"{dt}" for *_, dt in points],
+                                   colors[series_name])
             ax.set_title(name)
             ax.set_xlabel("right-hand-side evaluations" if key == "rhs_evals" else "wall time [s]")
             ax.grid(True, which="both", alpha=0.3)
@@ -219,20 +220,21 @@ def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",
     integrator and the other swept values; the step axis spans all methods."""
     if "integrator.dt" not in parameters:
         return None
-    panels, colors = {}, {}
+    panels, colors, references = {}, {}, {}
     for row in rows:
-        if row.get("is_reference"):
-            continue
         panel = scene_name(row) + (f", {row['collision.model']}" if "collision.model" in parameters else "")
         groups = panels.setdefault(panel, {})
         y, x = number(row.get(y_key)), number(row.get("integrator.dt"))
+        if row.get("is_reference"):
+            references[panel] = (method_label(row), y)
+            continue
         if not (math.isfinite(x) and math.isfinite(y)):
             continue
         rest = [f"{key.split('.')[-1]}={row[key]}" for key in parameters if key in row
                 and key not in ("integrator.dt", "collision.model") + INTEGRATOR_DETAIL + NEVER_IN_LABEL]
         name = ", ".join([str(row.get("integrator", "?"))] + rest)
         groups.setdefault(name, []).append((x, y))
-        colors[name] = integrator_color(row)
+        colors[name] = (integrator_color(row), style.INTEGRATOR_MARKERS.get(row.get("integrator"), "o"))
     if not any(panels.values()):
         return None
     ncols = 2 if len(panels) > 1 else 1
@@ -249,7 +251,11 @@ def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",
         for name, points in sorted(groups.items()):
             xs, ys = zip(*sorted(points))
             variant = variants.index(name.split(", ", 1)[-1] if ", " in name else "")
-            ax.plot(xs, ys, label=name, color=colors[name], **style.variant_style(variant))
+            color, marker = colors[name]
+            ax.plot(xs, ys, label=name, color=color, mfc="none", mew=1.2,
+                    **{**style.variant_style(variant), "marker": marker})
+        if math.isfinite(references.get(panel, ("", math.nan))[1]):
+            ax.axhline(references[panel][1], c="k", lw=1.0, ls="--", label=f"{references[panel][0]} (reference)")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("dt [s]")

@@ -67,13 +67,20 @@ def draw_view(ax, view, cloth, colors, objects=None, object_points=None, fixed_p
 
 
 def instants(summary, end):
-    """The times shown: every manipulation (not `ignored`) and the end, at most MAX_INSTANTS."""
-    times = {}
+    """The instants shown, as (kind, occurrence, t): every manipulation (not `ignored`) and the
+    end, at most MAX_INSTANTS."""
+    shown = [(kind, k, t) for kind, k, t in event_list(summary)][:MAX_INSTANTS - 1]
+    return shown + [("end", 0, end)]
+
+
+def event_list(summary):
+    """(type, occurrence of that type, t) of a run's manipulations, in order."""
+    counts, out = {}, []
     for e in summary.get("events", []):
         if e.get("type") != "ignored":
-            times.setdefault(round(float(e["t"]), 9), e["type"])
-    shown = sorted(times.items())[:MAX_INSTANTS - 1]
-    return shown + [(end, "end")]
+            k = counts[e["type"]] = counts.get(e["type"], -1) + 1
+            out.append((e["type"], k, float(e["t"])))
+    return out
 
 
 def frame_at(trace, t):
@@ -83,12 +90,22 @@ def frame_at(trace, t):
     return k if k >= 0 and trace["t"][-1] >= t - 1e-9 else None
 
 
+def run_frame(trace, summary, kind, occurrence, t):
+    """The frame of an instant in one run: right after the run's own event of that type and
+    occurrence (methods reach an event at slightly different times), else at or before t."""
+    if kind == "end":
+        return len(trace["t"]) - 1
+    own = {(k, n): time for k, n, time in event_list(summary)}
+    return frame_at(trace, own.get((kind, occurrence), t))
+
+
 def methods(rows):
     """The runs drawn for one scene: the reference first, then one per integrator (its
     smallest step), at most MAX_METHODS."""
     chosen, seen = [], set()
-    for row in sorted(rows, key=lambda r: (not r.get("is_reference"), str(r.get("integrator")),
-                                          _step(r))):
+    order = list(style.INTEGRATOR_COLORS)
+    for row in sorted(rows, key=lambda r: (not r.get("is_reference"), order.index(r["integrator"])
+                                          if r.get("integrator") in order else len(order), _step(r))):
         name = "reference" if row.get("is_reference") else row.get("integrator")
         if name not in seen:
             seen.add(name)
@@ -115,11 +132,12 @@ def scene_figures(directory, out_dir, scene, rows):
     for row in methods(rows):
         run = runfiles.run_dir(directory, row)
         if (run / "trace.csv").exists():
-            runs.append((row, run, runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))))
+            runs.append((row, runfiles.read_summary(run) if (run / "summary.json").exists() else {},
+                         runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))))
     if not runs:
         return []
-    first = runs[0][1]
-    summary = runfiles.read_summary(first)
+    first = runfiles.run_dir(directory, runs[0][0])
+    summary = runs[0][1]
     rows_n, cols_n = (runfiles.scene_value(summary, f"cloth.{k}", 0) for k in ("rows", "cols"))
     dummy = runfiles.read_table(first / "dummy.csv") if (first / "dummy.csv").exists() else None
     objects = object_quads(dummy) if dummy is not None else None
@@ -134,11 +152,11 @@ def scene_figures(directory, out_dir, scene, rows):
         panel_w = 1.9 * min(max(width / (hi[1] - lo[1]), 0.6), 1.4)
         fig, axes = plt.subplots(len(shown), len(runs), squeeze=False,
                                  figsize=(panel_w * len(runs) + 0.8, 2.0 * len(shown) + 0.6))
-        for c, (row, run, trace) in enumerate(runs):
+        for c, (row, run_summary, trace) in enumerate(runs):
             axes[0, c].set_title(method_name(row))
-            for r, (t, kind) in enumerate(shown):
+            for r, (kind, occurrence, t) in enumerate(shown):
                 ax = axes[r, c]
-                k = frame_at(trace, t) if kind != "end" else len(trace["t"]) - 1
+                k = run_frame(trace, run_summary, kind, occurrence, t)
                 if k is None:
                     style.empty_note(ax, f"no frame:\n{row.get('status', 'stopped')}\nat t={trace['t'][-1]:.3g} s")
                     continue
@@ -152,8 +170,8 @@ def scene_figures(directory, out_dir, scene, rows):
                 ax.tick_params(labelleft=c == 0, labelbottom=r == len(shown) - 1)
                 ax.text(0.02, 0.02, f"t={trace['t'][k]:.3f} s", transform=ax.transAxes, fontsize=style.MIN_FONT,
                         bbox=dict(fc="white", ec="none", alpha=0.7, pad=1))
-            for r, (t, kind) in enumerate(shown):
-                axes[r, 0].set_ylabel(f"{kind}\ny [m]")
+            for r, (kind, _, _) in enumerate(shown):
+                axes[r, 0].set_ylabel(f"{kind.replace('_', ' ')}\ny [m]")
         axis_name = "x" if horizontal == 0 else "z"
         for ax in axes[-1]:
             ax.set_xlabel(f"{axis_name} [m]")
