@@ -19,6 +19,23 @@ TRACE_HEADER = "t,index,x,y,z,vx,vy,vz,fixed,contact,event"
 STATE_HEADER = "index,row,col,x,y,z,vx,vy,vz,fixed"
 
 
+def unit_directions(n):
+    """n unit vectors in different directions, (n, 3), n <= 5."""
+    d = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 1], [1, -2, 0.5]], float)[:n]
+    return d / np.linalg.norm(d, axis=1, keepdims=True)
+
+
+def trace_dict(t, x, v=None, fixed=None, contact=None):
+    """What runfiles.trace_frames returns, built in memory."""
+    k, n = x.shape[:2]
+    return {
+        "t": np.asarray(t, float), "x": x, "v": np.zeros_like(x) if v is None else v,
+        "fixed": np.zeros((k, n), bool) if fixed is None else fixed,
+        "contact": -np.ones((k, n), int) if contact is None else contact,
+        "event": np.zeros(k, bool),
+    }
+
+
 def write_csv(path, header, rows):
     """A CSV file with `header` (a comma-separated string) and numeric rows, 17 digits."""
     with open(path, "w") as f:
