@@ -15,9 +15,12 @@ import math
 import sys
 from pathlib import Path
 
-import pandas as pd
+try:
+    import pandas as pd
+except ImportError:  # drapelab report checks for matplotlib and numpy only
+    sys.exit("report.py needs pandas (Debian: apt install python3-pandas; install_dependencies.sh installs it)")
 
-from drapeanalysis import metrics, plots, runfiles, stats
+from drapeanalysis import metrics, plots, runfiles, stats  # noqa: E402
 
 # Columns of the report's table besides the parameters; every column is in metrics.csv.
 TABLE_COLUMNS = (
