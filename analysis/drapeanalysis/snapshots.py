@@ -59,9 +59,10 @@ def draw_view(ax, view, cloth, colors, objects=None, object_points=None, fixed_p
     polys, faces = np.concatenate(polys), np.concatenate(faces)
     order = np.argsort(sign * polys[:, :, depth].mean(axis=1))
     ax.add_collection(PolyCollection(polys[order][:, :, [horizontal, 1]], facecolors=faces[order],
-                                     edgecolors=faces[order], linewidths=0.2))
+                                     edgecolors=faces[order], linewidths=0.2,
+                                     rasterized=True))  # SVG and PDF: text vector, mesh a 200 dpi image
     if object_points is not None:
-        ax.scatter(object_points[:, horizontal], object_points[:, 1], s=0.5, c="0.7", zorder=0)
+        ax.scatter(object_points[:, horizontal], object_points[:, 1], s=0.5, c="0.7", zorder=0, rasterized=True)
     if fixed_points is not None and len(fixed_points):
         ax.scatter(fixed_points[:, horizontal], fixed_points[:, 1], s=10, c="tab:red", zorder=3)
 
