@@ -159,7 +159,8 @@ CAPTIONS = {
     "vibration_vs_dt": "Vibration: RMS motion of the free cloth particles above the run's cutoff "
                        "(between its swing and stretch frequencies, docs/analysis.md) over the last "
                        "0.5 s of the run, against the step size; one panel per scene (and collision "
-                       "model), one line per integrator and the other swept values.",
+                       "model), one line per integrator and the other swept values; dashed black: "
+                       "the reference run.",
     "vibration_events_vs_dt": "The same, largest over the windows after each manipulation.",
     "contact_switch_vs_dt": "Changes of a particle's nearest object particle in contact per free "
                             "particle and second, last 0.5 s, against the step size.",
