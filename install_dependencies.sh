@@ -1,16 +1,24 @@
 #!/usr/bin/env bash
-# Installs what drapelab needs from Debian's packages (Debian 12), skipping what is there.
+# Installs what drapelab needs from Debian's packages (Debian 12), skipping what is there, and
+# puts analysis/ on the path of Debian's /usr/bin/python3 (`import drapeanalysis` anywhere).
 set -euo pipefail
 packages=(cmake g++ make libeigen3-dev libsundials-dev nlohmann-json3-dev libgtest-dev
           libbenchmark-dev libcli11-dev libfmt-dev libtinyobjloader-dev python3-matplotlib
-          python3-numpy parallel libjs-three chromium)
+          python3-numpy python3-pandas ffmpeg parallel libjs-three chromium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
 if ((${#missing[@]})); then
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
+# A .pth file in the interpreter's first site directory (/usr/local/lib/python3.11/dist-packages
+# on Debian 12, which pip and apt leave alone) names this checkout's analysis/ folder: no pip,
+# no network. Rerun after moving the checkout.
+analysis="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/analysis"
+site="$(/usr/bin/python3 -c 'import site; print(site.getsitepackages()[0])')"
+$sudo mkdir -p "$site"
+echo "$analysis" | $sudo tee "$site/drapelab-analysis.pth" >/dev/null

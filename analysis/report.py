@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Metrics, plots and an HTML report of an experiment folder.
 
-Usage: report.py DIR
+Usage: report.py DIR [--animate [RUN_ID ...]] [--frames N]
 Reads DIR/results.json and the files of every run (docs/outputs.md); writes DIR/metrics.csv and
 DIR/metrics.json (the results table plus the metrics of docs/analysis.md) and DIR/report/:
-report.html with its figures as PNG and SVG. `drapelab report DIR` runs this script.
+report.html with its figures as PNG, SVG and PDF, a method x scene summary and the full table.
+`drapelab report DIR` runs this script.
 """
 import argparse
 import csv
@@ -14,7 +15,12 @@ import math
 import sys
 from pathlib import Path
 
-from drapeanalysis import metrics, plots, runfiles
+try:
+    import pandas as pd
+except ImportError:  # drapelab report checks for matplotlib and numpy only
+    sys.exit("report.py needs pandas (Debian: apt install python3-pandas; install_dependencies.sh installs it)")
+
+from drapeanalysis import metrics, plots, runfiles, stats  # noqa: E402
 
 # Columns of the report's table besides the parameters; every column is in metrics.csv.
 TABLE_COLUMNS = (
@@ -23,7 +29,17 @@ TABLE_COLUMNS = (
     "vibration_rms_events", "vibration_rms_holding", "hand_jitter_rms_holding", "settle_time", "contact_switch_rate_final", "hand_jitter_rms_final",
     "mapping_gap_mean_mapped", "mapping_gap_mean_final", "mapping_gap_max_final",
     "spring_strain_rms_mapped", "spring_strain_rms_final", "spring_strain_max_final", "error_rms",
-    "error_max", "stable_value",
+    "error_max", "stable_value", "slow_motion_rms_final", "vibration_cutoff_hz",
+)
+
+# The summary's method x scene tables: column, title, unit, scale to that unit.
+SUMMARY_METRICS = (
+    ("vibration_rms_events", "Vibration after the manipulations (largest event window)", "mm", 1e3),
+    ("vibration_rms_final", "Vibration over the last 0.5 s", "mm", 1e3),
+    ("slow_motion_rms_final", "Slow motion over the last 0.5 s", "mm", 1e3),
+    ("error_rms", "RMS error of the final positions against the reference", "mm", 1e3),
+    ("energy_drift_max_rel", "Largest relative energy error", "1", 1.0),
+    ("wall_seconds", "Wall time", "s", 1.0),
 )
 
 
@@ -71,6 +87,48 @@ def cell(value):
     return value
 
 
+def method_name(row, parameters):
+    """A run's method: integrator, step and the swept values other than the scene."""
+    rest = plots.label(row, parameters, ("integrator.dt", "scene") + plots.INTEGRATOR_DETAIL)
+    name = plots.method_label(row) + (" (reference)" if row.get("is_reference") else "")
+    return name if rest == plots.scene_name(row) else f"{name}, {rest}"
+
+
+def summary_cell(r, metric, scale):
+    """One cell of a summary table: the mean in the table's unit, +- the 95 % half-width and n
+    for repeated runs, a dash for none."""
+    if not r[f"{metric}_n"]:
+        return "&ndash;"
+    value = f"{r[f'{metric}_mean'] * scale:.3g}"
+    if r[f"{metric}_n"] > 1:
+        value += f" &plusmn; {r[f'{metric}_ci95'] * scale:.2g} (n={r[f'{metric}_n']})"
+    return value
+
+
+def summary_tables(rows, parameters):
+    """Method x scene tables of the main metrics (mean over repeats, +- the 95 % half-width when
+    a method was run more than once), in their units; empty metrics left out."""
+    frame = pd.DataFrame([{"method": method_name(r, parameters), "scene": plots.scene_name(r),
+                           **{m: plots.number(r.get(m)) for m, *_ in SUMMARY_METRICS}} for r in rows])
+    if frame.empty:
+        return ""
+    order = list(dict.fromkeys(frame["method"]))
+    summary = stats.summarise(frame, ["method", "scene"], [m for m, *_ in SUMMARY_METRICS])
+    parts = []
+    for metric, title, unit, scale in SUMMARY_METRICS:
+        if not summary[f"{metric}_n"].any():
+            continue
+        cells = summary.apply(lambda r: summary_cell(r, metric, scale), axis=1)
+        table = summary.assign(cell=cells).pivot(index="method", columns="scene", values="cell")
+        table = table.reindex([m for m in order if m in table.index]).fillna("&ndash;")
+        head = "".join(f"<th>{html.escape(c)}</th>" for c in table.columns)
+        body = "".join(f"<tr><th>{html.escape(m)}</th>" + "".join(f"<td>{v}</td>" for v in table.loc[m]) + "</tr>"
+                       for m in table.index)
+        parts.append(f"<h3>{html.escape(title)} [{unit}]</h3><table class='summary'><tr><th>method</th>"
+                     f"{head}</tr>{body}</table>")
+    return "".join(parts)
+
+
 def html_table(rows, parameters):
     """The results as an HTML table: id, parameters, the main metrics present."""
     present = [c for c in TABLE_COLUMNS if any(clean(r.get(c)) not in (None, "") for r in rows)]
@@ -98,9 +156,11 @@ CAPTIONS = {
                                   "manipulation.attach_iterations (paper Figure 5).",
     "attach_error_vs_time": "The same attach error against the simulated time the attached "
                             "particle was left to settle (attach_iterations x dt).",
-    "vibration_vs_dt": "High-frequency RMS motion of the free cloth particles over the last 0.5 s "
-                       "of the run, against the step size; one panel per scene (and collision "
-                       "model), one line per integrator and the other swept values.",
+    "vibration_vs_dt": "Vibration: RMS motion of the free cloth particles above the run's cutoff "
+                       "(between its swing and stretch frequencies, docs/analysis.md) over the last "
+                       "0.5 s of the run, against the step size; one panel per scene (and collision "
+                       "model), one line per integrator and the other swept values; dashed black: "
+                       "the reference run.",
     "vibration_events_vs_dt": "The same, largest over the windows after each manipulation.",
     "contact_switch_vs_dt": "Changes of a particle's nearest object particle in contact per free "
                             "particle and second, last 0.5 s, against the step size.",
@@ -136,32 +196,64 @@ def make_figures(directory, out_dir, rows, parameters):
         ("stable_dt", plots.stable_dt(out_dir, rows, parameters)),
     ]
     out = [(stem, CAPTIONS[name]) for name, stem in figures if stem]
-    out += [(stem, "Cloth on the object at every event and at the end: front (x-y) and side (z-y) views; "
-                   "fixed particles red.") for stem in plots.snapshots(directory, out_dir, rows)]
+    out += [(stem, f"{stem.rsplit('_', 1)[-1].capitalize()} view of the cloth (blue, shaded) on the object "
+                   "(grey) at every manipulation and at the end (rows), the reference and one run per "
+                   "integrator, its smallest step (columns); fixed particles red.")
+            for stem in plots.snapshots(directory, out_dir, rows)]
     return out
 
 
-def write_html(out_dir, results, rows, figures):
-    """report.html: the question, the figures (PNG, linked to SVG), the table."""
+def write_html(out_dir, results, rows, figures, videos=()):
+    """report.html: the question, the method x scene summary, the figures (PNG, linked to SVG
+    and PDF), animations, and the full table folded away."""
     parts = [f"<h1>{html.escape(results['name'])}</h1>",
              f"<p><b>Question.</b> {html.escape(results.get('question') or '')}</p>"]
+    summary = summary_tables(rows, results["parameters"])
+    if summary:
+        parts.append("<h2>Summary</h2><p>Method x scene; a dash: no value (the run diverged, or "
+                     "the metric does not apply).</p>" + summary)
+    parts.append("<h2>Figures</h2>")
     for stem, caption in figures:
-        parts.append(f'<figure><a href="{stem}.svg"><img src="{stem}.png"></a>'
-                     f"<figcaption>{html.escape(caption)}</figcaption></figure>")
-    parts.append("<h2>Runs</h2>" + html_table(rows, results["parameters"]))
+        parts.append(f'<figure><img src="{stem}.png" alt="{html.escape(stem)}">'
+                     f"<figcaption>{html.escape(caption)} <a href='{stem}.svg'>SVG</a>, "
+                     f"<a href='{stem}.pdf'>PDF</a></figcaption></figure>")
+    for name in videos:
+        parts.append(f"<figure><video controls src='{name}' width='640'></video>"
+                     f"<figcaption>{html.escape(name)}</figcaption></figure>")
+    parts.append("<h2>Runs</h2><details><summary>Every run with its parameters and main metrics "
+                 f"({len(rows)} rows)</summary>" + html_table(rows, results["parameters"]) + "</details>")
     parts.append("<p>Every parameter and metric: <a href='../metrics.csv'>metrics.csv</a>, "
                  "<a href='../metrics.json'>metrics.json</a>. Metrics: docs/analysis.md.</p>")
     style = ("body{font-family:sans-serif;margin:2em;max-width:80em}img{max-width:100%}"
-             "table{border-collapse:collapse;font-size:80%}td,th{border:1px solid #ccc;padding:2px 5px}"
-             "figure{margin:1em 0}")
+             "table{border-collapse:collapse;font-size:80%;margin-bottom:1em}"
+             "td,th{border:1px solid #ccc;padding:2px 5px}table.summary td{text-align:right}"
+             "figure{margin:1em 0}figcaption{max-width:60em}summary{cursor:pointer}")
     page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{html.escape(results['name'])}"
             f"</title><style>{style}</style></head><body>{''.join(parts)}</body></html>\n")
     (out_dir / "report.html").write_text(page)
 
 
+def animate(directory, out_dir, rows, ids, frames):
+    """An MP4 per run named in ids (every run with a trace when ids is empty): the file names."""
+    from drapeanalysis import animation  # needs ffmpeg only when asked for
+    unknown = set(ids) - {row["id"] for row in rows}
+    if unknown:
+        sys.exit(f"{directory}: --animate: no run {', '.join(sorted(unknown))}")
+    names = []
+    for row in rows:
+        run = runfiles.run_dir(directory, row)
+        if (not ids or row["id"] in ids) and (run / "trace.csv").exists():
+            names.append(f"{row['id']}.mp4")
+            animation.animate_run(run, out_dir / names[-1], max_frames=frames)
+    return names
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("directory", type=Path)
+    parser.add_argument("--animate", nargs="*", metavar="RUN_ID",
+                        help="also write an MP4 of these runs (every run when no id is given); needs ffmpeg")
+    parser.add_argument("--frames", type=int, default=300, help="at most this many frames an animation")
     args = parser.parse_args()
     if not (args.directory / "results.json").exists():
         sys.exit(f"{args.directory}: no results.json (run `drapelab experiment` or `drapelab merge` first)")
@@ -171,7 +263,8 @@ def main():
     out_dir = args.directory / "report"
     out_dir.mkdir(exist_ok=True)
     figures = make_figures(args.directory, out_dir, rows, results["parameters"])
-    write_html(out_dir, results, rows, figures)
+    videos = animate(args.directory, out_dir, rows, args.animate, args.frames) if args.animate is not None else []
+    write_html(out_dir, results, rows, figures, videos)
     print(out_dir / "report.html")
 
 

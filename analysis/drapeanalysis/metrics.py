@@ -1,22 +1,21 @@
 """Metrics of one run, computed from its files only; formulas in docs/analysis.md."""
-import csv
 import math
 
 import numpy as np
 
-from . import runfiles
+from . import runfiles, spectral
 
-# Defaults of the vibration metrics (docs/analysis.md): window after an event, moving-average
-# span that separates slow draping motion from vibration, and the speed below which cloth rests.
+# Defaults of the vibration metrics (docs/analysis.md): window after an event and the speed
+# below which cloth rests. The cutoff between slow motion and vibration comes from the model
+# (spectral.model_frequencies).
 VIBRATION_WINDOW = 0.5
-SMOOTHING_SPAN = 0.05
 SETTLE_SPEED = 0.01
 
 
 def energy_drift(energy):
     """Relative energy error r(t) = (E(t) - E(0)) / |E(0)|: its max and final magnitude, linear
     growth rate [1/s], and the exponent p of the envelope max_{s<=t}|r(s)| ~ t^p."""
-    t, total = energy["t"], energy["total"]
+    t, total = np.asarray(energy["t"], float), np.asarray(energy["total"], float)
     rel = np.abs(total - total[0]) / max(abs(total[0]), 1e-300)
     out = {
         "energy_drift_max_rel": float(rel.max()),
@@ -34,28 +33,6 @@ def energy_drift(energy):
     return out
 
 
-def moving_average(values, span):
-    """Centred moving average over `span` samples along axis 0; near the ends the span shrinks
-    symmetrically, so the average stays centred and linear motion drops out everywhere."""
-    half = max(span // 2, 0)
-    cumulative = np.cumsum(np.concatenate([np.zeros((1,) + values.shape[1:]), values]), axis=0)
-    k = np.arange(len(values))
-    reach = np.minimum(half, np.minimum(k, len(values) - 1 - k))
-    lo, hi = k - reach, k + reach + 1
-    shape = (-1,) + (1,) * (values.ndim - 1)
-    return (cumulative[hi] - cumulative[lo]) / (hi - lo).reshape(shape)
-
-
-def high_frequency_rms(values, times, span_seconds):
-    """RMS of values minus their moving average over span_seconds (axis 0 is time)."""
-    if len(times) < 3:
-        return math.nan
-    step = float(np.median(np.diff(times)))
-    span = max(int(round(span_seconds / step)) if step > 0 else 1, 1)
-    residual = values - moving_average(values, span)
-    return float(np.sqrt(np.mean(np.sum(residual**2, axis=-1))))
-
-
 def settle_time(times, speeds, start, limit=SETTLE_SPEED):
     """Time after `start` from which the RMS speed stays below `limit` (nan if it never does)."""
     above = np.nonzero(speeds >= limit)[0]
@@ -66,9 +43,10 @@ def settle_time(times, speeds, start, limit=SETTLE_SPEED):
     return float(times[above[-1] + 1] - start)
 
 
-def vibration_window(trace, t0, t1, hands=None):
-    """Vibration of the free particles over trace frames in [t0, t1]: high-frequency position
-    and velocity RMS, settle time, contact switches per particle-second, and the hand jitter."""
+def vibration_window(trace, t0, t1, cutoff_hz, hands=None):
+    """Vibration of the free particles over trace frames in [t0, t1]: position and velocity RMS
+    above cutoff_hz and the slow motion beside it (spectral.py), settle time, contact switches
+    per particle-second, and the hand jitter."""
     frames = (trace["t"] >= t0 - 1e-12) & (trace["t"] <= t1 + 1e-12)
     times = trace["t"][frames]
     free = ~trace["fixed"][frames].any(axis=0)
@@ -81,58 +59,56 @@ def vibration_window(trace, t0, t1, hands=None):
     speeds = np.sqrt(np.mean(np.sum(v**2, axis=-1), axis=1))
     switches = np.count_nonzero(np.diff(contact, axis=0))
     out.update({
-        "vibration_rms": high_frequency_rms(x, times, SMOOTHING_SPAN),
-        "vibration_velocity_rms": high_frequency_rms(v, times, SMOOTHING_SPAN),
+        "vibration_rms": spectral.vibration_rms(times, x, cutoff_hz),
+        "slow_motion_rms": spectral.slow_motion_rms(times, x, cutoff_hz),
+        "vibration_velocity_rms": spectral.vibration_rms(times, v, cutoff_hz),
         "settle_time": settle_time(times, speeds, t0),
         "contact_switch_rate": switches / (free.sum() * max(times[-1] - times[0], 1e-300)),
-        "hand_jitter_rms": hand_jitter(hands, t0, t1) if hands is not None else math.nan,
+        "hand_jitter_rms": hand_jitter(hands, t0, t1, cutoff_hz) if hands is not None else math.nan,
     })
     return out
 
 
-def hand_jitter(hands, t0, t1):
-    """High-frequency RMS of the tracked hand positions in [t0, t1] (0 with no tracked hand)."""
+def hand_jitter(hands, t0, t1, cutoff_hz):
+    """RMS above cutoff_hz of the tracked hand positions (hands.csv DataFrame) in [t0, t1], the
+    largest over the hands (0 with no tracked hand)."""
     values = []
-    for hand in np.unique(hands["hand_id"]):
-        rows = (hands["hand_id"] == hand) & (hands["available"] > 0)
-        rows &= (hands["t"] >= t0) & (hands["t"] <= t1)
-        if rows.sum() >= 3:
-            xyz = np.stack([hands["x"][rows], hands["y"][rows], hands["z"][rows]], axis=1)
-            values.append(high_frequency_rms(xyz, hands["t"][rows], SMOOTHING_SPAN))
+    inside = (hands["available"] > 0) & (hands["t"] >= t0) & (hands["t"] <= t1)
+    for _, rows in hands[inside].groupby("hand"):
+        if len(rows) >= 3:
+            values.append(spectral.vibration_rms(rows["t"].to_numpy(), runfiles.positions(rows), cutoff_hz))
+    values = [v for v in values if math.isfinite(v)]
     return max(values) if values else 0.0
-
-
-def read_hands(path):
-    """hands.csv with the hand name turned into a number (left 0, right 1)."""
-    header = runfiles.read_header(path)
-    missing = [c for c in ("t", "hand", "available", "x", "y", "z") if c not in header]
-    if missing:
-        raise ValueError(f"{path}: missing column(s) {', '.join(missing)} (has {', '.join(header)})")
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    columns = {key: np.array([float(r[key]) for r in rows]) for key in ("t", "available", "x", "y", "z")}
-    columns["hand_id"] = np.array([0 if r["hand"] == "left" else 1 for r in rows])
-    return columns
 
 
 def vibration(run, summary, window=VIBRATION_WINDOW):
     """Vibration after every event (to the next event or `window` seconds) and over the last
-    `window` seconds of the run, from trace.csv; empty without a trace."""
+    `window` seconds of the run, from trace.csv, above the cutoff derived from the run's scene;
+    empty without a trace."""
     if not (run / "trace.csv").exists():
         return {}, []
-    trace = runfiles.read_trace(run / "trace.csv")
-    hands = read_hands(run / "hands.csv") if (run / "hands.csv").exists() else None
+    try:
+        model = spectral.model_frequencies(summary)
+    except ValueError as e:
+        raise ValueError(f"{run / 'summary.json'}: {e}") from e
+    cutoff = model["cutoff_hz"]
+    trace = runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))
+    hands = runfiles.read_hands(run / "hands.csv") if (run / "hands.csv").exists() else None
     end = float(trace["t"][-1])
     times = sorted({float(e["t"]) for e in summary.get("events", []) if e.get("type") != "ignored"})
     windows = []
     for k, t0 in enumerate(times):
         t1 = min(t0 + window, times[k + 1] if k + 1 < len(times) else end, end)
-        windows.append(vibration_window(trace, t0, t1, hands))
-    final = vibration_window(trace, max(end - window, 0.0), end, hands)
+        windows.append(vibration_window(trace, t0, t1, cutoff, hands))
+    final = vibration_window(trace, max(end - window, 0.0), end, cutoff, hands)
     out = {f"{key}_final": final.get(key, math.nan)
-           for key in ("vibration_rms", "vibration_velocity_rms", "contact_switch_rate", "hand_jitter_rms")}
-    events = [w for w in windows if "vibration_rms" in w]
-    out["vibration_rms_events"] = max((w["vibration_rms"] for w in events), default=math.nan)
+           for key in ("vibration_rms", "slow_motion_rms", "vibration_velocity_rms", "contact_switch_rate",
+                       "hand_jitter_rms")}
+    out.update(vibration_cutoff_hz=cutoff, swing_hz=model["swing_hz"], stretch_hz=model["stretch_hz"])
+    events = [w for w in windows if math.isfinite(w.get("vibration_rms", math.nan))]
+    worst_event = max(events, key=lambda w: w["vibration_rms"], default={})
+    out["vibration_rms_events"] = worst_event.get("vibration_rms", math.nan)
+    out["slow_motion_rms_events"] = worst_event.get("slow_motion_rms", math.nan)
     # Steady holding: from `window` seconds after a hold (its transient gone) to the next event;
     # vibration that follows the hand here, with hand_jitter_rms, is the sensor's.
     holding = []
@@ -141,14 +117,15 @@ def vibration(run, summary, window=VIBRATION_WINDOW):
         later = [t for t in times if t > t0 + 1e-12]
         t1 = min(later[0] if later else end, end)
         if t1 - (t0 + window) >= window:
-            holding.append(vibration_window(trace, t0 + window, t1, hands))
-    holding = [w for w in holding if "vibration_rms" in w]
+            holding.append(vibration_window(trace, t0 + window, t1, cutoff, hands))
+    holding = [w for w in holding if math.isfinite(w.get("vibration_rms", math.nan))]
     worst = max(holding, key=lambda w: w["vibration_rms"], default={})
     out["vibration_rms_holding"] = worst.get("vibration_rms", math.nan)
+    out["slow_motion_rms_holding"] = worst.get("slow_motion_rms", math.nan)
     out["vibration_velocity_rms_holding"] = worst.get("vibration_velocity_rms", math.nan)
     out["hand_jitter_rms_holding"] = worst.get("hand_jitter_rms", math.nan)
     # Without events the cloth settles from its start; with events, from the slowest event.
-    settling = events if times else [vibration_window(trace, 0.0, end, hands)]
+    settling = events if times else [vibration_window(trace, 0.0, end, cutoff, hands)]
     settle = [w.get("settle_time", math.nan) for w in settling]
     out["settle_time"] = max(settle) if settle and not any(map(math.isnan, settle)) else math.nan
     return out, windows
@@ -183,17 +160,15 @@ def mapping_error(run, summary):
     maps = [e for e in summary.get("events", []) if e.get("type") == "map"]
     if not maps or not (run / "dummy.csv").exists() or not (run / "state.csv").exists():
         return {}
-    dummy = runfiles.read_table(run / "dummy.csv", ("x", "y", "z"))
-    objects = np.stack([dummy["x"], dummy["y"], dummy["z"]], axis=1)
+    objects = runfiles.positions(runfiles.read_table(run / "dummy.csv", ("x", "y", "z")))
     delta = runfiles.scene_value(summary, "collision.threshold", 0.01)
     rows = runfiles.scene_value(summary, "cloth.rows", 0)
     cols = runfiles.scene_value(summary, "cloth.cols", 0)
     spacing = runfiles.scene_value(summary, "cloth.spacing", 0.0)
     states = {}
-    state = runfiles.read_table(run / "state.csv", ("x", "y", "z"))
-    states["final"] = np.stack([state["x"], state["y"], state["z"]], axis=1)
+    states["final"] = runfiles.positions(runfiles.read_state(run / "state.csv"))
     if (run / "trace.csv").exists():
-        trace = runfiles.read_trace(run / "trace.csv")
+        trace = runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))
         at_map = np.nonzero(trace["event"] & np.isclose(trace["t"], maps[0]["t"]))[0]
         if len(at_map):
             states["mapped"] = trace["x"][at_map[-1]]
@@ -215,12 +190,12 @@ def reference_error(run, reference_run):
     """RMS and max distance between the final particle positions of a run and its reference."""
     if not (run / "state.csv").exists() or not (reference_run / "state.csv").exists():
         return {}
-    a = runfiles.read_table(run / "state.csv", ("x", "y", "z"))
-    b = runfiles.read_table(reference_run / "state.csv", ("x", "y", "z"))
-    if len(a["x"]) != len(b["x"]):
-        raise ValueError(f"{run / 'state.csv'}: {len(a['x'])} particles, the reference "
-                         f"{reference_run / 'state.csv'} has {len(b['x'])}")
-    d = np.sqrt((a["x"] - b["x"]) ** 2 + (a["y"] - b["y"]) ** 2 + (a["z"] - b["z"]) ** 2)
+    a = runfiles.positions(runfiles.read_state(run / "state.csv"))
+    b = runfiles.positions(runfiles.read_state(reference_run / "state.csv"))
+    if len(a) != len(b):
+        raise ValueError(f"{run / 'state.csv'}: {len(a)} particles, the reference "
+                         f"{reference_run / 'state.csv'} has {len(b)}")
+    d = np.linalg.norm(a - b, axis=1)
     return {"error_rms": float(np.sqrt(np.mean(d**2))), "error_max": float(d.max())}
 
 
@@ -230,9 +205,9 @@ def run_metrics(directory, row, rows_by_id):
     out, windows = {}, []
     if not (run / "summary.json").exists():
         return out, windows
-    summary = runfiles.read_json(run / "summary.json")
+    summary = runfiles.read_summary(run)
     if (run / "energy.csv").exists():
-        out.update(energy_drift(runfiles.read_table(run / "energy.csv", ("t", "total"))))
+        out.update(energy_drift(runfiles.read_energy(run / "energy.csv")))
     vib, windows = vibration(run, summary)
     out.update(vib)
     out.update(mapping_error(run, summary))

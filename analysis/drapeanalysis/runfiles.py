@@ -1,12 +1,16 @@
-"""Readers for the files a run and an experiment write (docs/outputs.md, docs/experiments.md)."""
-import csv
+"""Readers for the files a run and an experiment write (docs/outputs.md, docs/experiments.md):
+CSV files as pandas DataFrames (one column per CSV column), JSON files as dicts. Every reader
+names the file in its error when a column is missing, a cell is not a number or there are no
+rows."""
 import json
-import warnings
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 TRACE_COLUMNS = ("t", "index", "x", "y", "z", "vx", "vy", "vz", "fixed", "contact", "event")
+STATE_COLUMNS = ("index", "row", "col", "x", "y", "z", "vx", "vy", "vz", "fixed")
+HANDS_COLUMNS = ("t", "hand", "available", "x", "y", "z")
 
 
 def read_json(path):
@@ -18,52 +22,70 @@ def read_json(path):
             raise ValueError(f"{path}: not valid JSON: {e}") from e
 
 
-def load_numbers(path, header, columns=()):
-    """The rows of a numeric CSV file with the given header as a (rows, columns) array; a clear
-    error naming the file when a required column is missing, a cell is not a number or there are
-    no rows."""
-    missing = [c for c in columns if c not in header]
-    if missing:
-        raise ValueError(f"{path}: missing column(s) {', '.join(missing)} (has {', '.join(header)})")
+def read_csv(path, columns=(), text_columns=()):
+    """A CSV file as a DataFrame; `columns` must be present, and every column but `text_columns`
+    must hold numbers."""
     try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", UserWarning)  # numpy's "empty input file"
-            data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    except ValueError as e:
+        frame = pd.read_csv(path, dtype={c: str for c in text_columns})
+    except pd.errors.EmptyDataError as e:
+        raise ValueError(f"{path}: empty file") from e
+    except pd.errors.ParserError as e:
         raise ValueError(f"{path}: {e}") from e
-    if data.shape[0] == 0:
+    missing = [c for c in columns if c not in frame.columns]
+    if missing:
+        raise ValueError(f"{path}: missing column(s) {', '.join(missing)} "
+                         f"(has {', '.join(map(str, frame.columns))})")
+    if frame.empty:
         raise ValueError(f"{path}: no rows")
-    if data.shape[1] != len(header):
-        raise ValueError(f"{path}: {data.shape[1]} values a row, {len(header)} column names")
-    return data
-
-
-def read_header(path):
-    """The column names of a CSV file."""
-    with open(path, newline="") as f:
-        header = next(csv.reader(f), None)
-    if not header:
-        raise ValueError(f"{path}: empty file")
-    return header
+    for name in frame.columns:
+        if name in text_columns:
+            continue
+        numbers = pd.to_numeric(frame[name], errors="coerce")
+        bad = numbers.isna() & frame[name].notna()
+        if bad.any() or frame[name].isna().any():
+            row = int(np.argmax(bad.to_numpy() | frame[name].isna().to_numpy()))
+            raise ValueError(f"{path}: row {row + 1}, column {name}: not a number "
+                             f"({frame[name].iloc[row]!r})")
+        frame[name] = numbers.astype(float)
+    return frame
 
 
 def read_table(path, columns=()):
-    """A numeric CSV file as a dict of column name -> float array; `columns` must be present."""
-    header = read_header(path)
-    data = load_numbers(path, header, columns)
-    return {name: data[:, k] for k, name in enumerate(header)}
+    """A numeric CSV file (energy.csv, state.csv, dummy.csv) as a DataFrame of floats."""
+    return read_csv(path, columns)
+
+
+def read_energy(path):
+    """energy.csv: t, kinetic, spring, gravity, collision, total."""
+    return read_csv(path, ("t", "total"))
+
+
+def read_state(path):
+    """state.csv: index, row, col, x, y, z, vx, vy, vz, fixed."""
+    return read_csv(path, ("x", "y", "z"))
+
+
+def read_hands(path):
+    """hands.csv: t, hand (left, right), available, x, y, z, candidate, distance, held."""
+    return read_csv(path, HANDS_COLUMNS, text_columns=("hand",))
 
 
 def read_trace(path):
-    """trace.csv as frames: times (K,), positions and velocities (K, N, 3), fixed, contact and
-    event flags (K, N). Rows are grouped by time in the order the run wrote them."""
-    header = read_header(path)
-    if tuple(header) != TRACE_COLUMNS:
-        raise ValueError(f"{path}: columns {','.join(header)}, expected {','.join(TRACE_COLUMNS)}")
-    data = load_numbers(path, header)
+    """trace.csv as a DataFrame, one row per particle and trace time, in the order written."""
+    frame = read_csv(path)
+    if tuple(frame.columns) != TRACE_COLUMNS:
+        raise ValueError(f"{path}: columns {','.join(frame.columns)}, expected {','.join(TRACE_COLUMNS)}")
+    particles = int(frame["index"].max()) + 1
+    if len(frame) % particles:
+        raise ValueError(f"{path}: {len(frame)} rows is not a whole number of {particles}-particle frames")
+    return frame
+
+
+def trace_frames(trace):
+    """A trace DataFrame as frames: times (K,), positions and velocities (K, N, 3), fixed and
+    contact (K, N), event flags (K,). Rows are grouped by time in the order the run wrote them."""
+    data = trace[list(TRACE_COLUMNS)].to_numpy(dtype=float)
     n = int(data[:, 1].max()) + 1
-    if len(data) % n:
-        raise ValueError(f"{path}: {len(data)} rows is not a whole number of {n}-particle frames")
     frames = data.reshape(-1, n, len(TRACE_COLUMNS))
     return {
         "t": frames[:, 0, 0],
@@ -75,13 +97,32 @@ def read_trace(path):
     }
 
 
+def positions(frame):
+    """The x, y, z columns of a state, dummy or trace DataFrame as an (N, 3) array."""
+    return frame[["x", "y", "z"]].to_numpy(dtype=float)
+
+
 def load_experiment(directory):
-    """The results table (results.json) of an experiment folder."""
+    """The results document (results.json) of an experiment folder, as a dict."""
     return read_json(Path(directory) / "results.json")
 
 
+def results_table(directory):
+    """The runs of an experiment's results.json as a DataFrame, one row per run, columns in the
+    document's order."""
+    doc = load_experiment(directory)
+    frame = pd.DataFrame(doc["runs"])
+    return frame[[c for c in doc["columns"] if c in frame.columns]
+                 + [c for c in frame.columns if c not in doc["columns"]]]
+
+
+def read_summary(run):
+    """A run's summary.json as a dict."""
+    return read_json(Path(run) / "summary.json")
+
+
 def run_dir(directory, row):
-    """The folder of one run of an experiment."""
+    """The folder of one run of an experiment (row: a results row, dict or pandas Series)."""
     return Path(directory) / row["run_dir"]
 
 

@@ -5,6 +5,7 @@ import unittest
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 import runfolder
 from drapeanalysis import metrics, runfiles
@@ -97,28 +98,13 @@ class EnergyDriftTest(RunFolderTest):
         self.assertNotIn("vibration_rms_final", out, "no trace.csv, no vibration")
 
 
-def unit_directions(n):
-    d = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 1], [1, -2, 0.5]], float)[:n]
-    return d / np.linalg.norm(d, axis=1, keepdims=True)
-
-
-def trace_dict(t, x, v=None, fixed=None, contact=None):
-    """What runfiles.read_trace returns, built in memory."""
-    k, n = x.shape[:2]
-    return {
-        "t": np.asarray(t, float), "x": x, "v": np.zeros_like(x) if v is None else v,
-        "fixed": np.zeros((k, n), bool) if fixed is None else fixed,
-        "contact": -np.ones((k, n), int) if contact is None else contact,
-        "event": np.zeros(k, bool),
-    }
-
-
 class VibrationWindowTest(RunFolderTest):
-    # A centred average over w leaves up to about 1 / (pi f w) of a sinusoid of frequency f
-    # (2.5 % at 250 Hz, 3.2 % at 200 Hz): the tolerance of the high-frequency RMS below.
-    # Trace every 1 ms from 0.8 s to 1.7 s; the window is [1.0, 1.5].
+    # The spectral split (test_spectral.py) reads a sinusoid 10 times above the cutoff within
+    # 0.5 % (the window's ends): the tolerance of the high-frequency RMS below.
+    # Trace every 1 ms from 0.8 s to 1.7 s; the window is [1.0, 1.5]; cutoff 20 Hz.
     t = np.arange(800, 1701) / 1000.0
     t0, t1 = 1.0, 1.5
+    cutoff = 20.0
 
     def slow_motion(self, n):
         """Draping-like motion: a drift plus a 3 s swing, and its velocity."""
@@ -135,7 +121,7 @@ class VibrationWindowTest(RunFolderTest):
         n, amplitude, f = 4, 1e-3, 200.0
         x, v = self.slow_motion(n + 1)
         phase = 2 * np.pi * f * self.t[:, None] + 0.7 * np.arange(n + 1)
-        d = unit_directions(n + 1)
+        d = runfolder.unit_directions(n + 1)
         inside = ((self.t >= self.t0) & (self.t <= self.t1))[:, None, None]
         scale = np.where(inside, amplitude, 10 * amplitude)  # outside the window: ignored
         x = x + scale * np.sin(phase)[:, :, None] * d
@@ -144,28 +130,28 @@ class VibrationWindowTest(RunFolderTest):
         fixed = np.zeros(x.shape[:2], bool)
         fixed[300, n] = True
         x[:, n] += 0.05 * np.sin(2 * np.pi * 90 * self.t)[:, None]
-        out = metrics.vibration_window(trace_dict(self.t, x, v, fixed), self.t0, self.t1)
+        out = metrics.vibration_window(runfolder.trace_dict(self.t, x, v, fixed), self.t0, self.t1, self.cutoff)
         self.assertEqual(out["frames"], 501)
-        self.assertClose(out["vibration_rms"], amplitude / math.sqrt(2), rel=0.03)
-        self.assertClose(out["vibration_velocity_rms"], 2 * np.pi * f * amplitude / math.sqrt(2), rel=0.03)
+        self.assertClose(out["vibration_rms"], amplitude / math.sqrt(2), rel=0.005)
+        self.assertClose(out["vibration_velocity_rms"], 2 * np.pi * f * amplitude / math.sqrt(2), rel=0.005)
         self.assertTrue(math.isnan(out["hand_jitter_rms"]), "no hands.csv")
 
     def test_uniform_motion_drops_out(self):
         # Motion linear in time (positions drifting, velocities growing as in free fall) has no
-        # high-frequency part: the centred average reproduces it, at the window's ends too.
+        # high-frequency part: the detrending polynomial holds it exactly.
         n = 3
         t = self.t[:, None, None]
         x = np.arange(n)[None, :, None] * 0.1 + np.array([0.3, -0.5, 0.2]) * t
         v = np.array([0.3, -0.5, 0.2]) + np.array([0.0, -9.81, 0.0]) * t + 0 * x
-        out = metrics.vibration_window(trace_dict(self.t, x, v), self.t0, self.t1)
+        out = metrics.vibration_window(runfolder.trace_dict(self.t, x, v), self.t0, self.t1, self.cutoff)
         self.assertLess(out["vibration_rms"], 1e-12)
         self.assertLess(out["vibration_velocity_rms"], 1e-10)
 
     def speeds_trace(self, speed):
         """A trace whose particles all move at `speed(t)` (the RMS speed), in different directions."""
         n = 3
-        v = speed(self.t)[:, None, None] * unit_directions(n)[None]
-        return trace_dict(self.t, np.zeros_like(v), v)
+        v = speed(self.t)[:, None, None] * runfolder.unit_directions(n)[None]
+        return runfolder.trace_dict(self.t, np.zeros_like(v), v)
 
     def test_settle_time_of_exponential_decay(self):
         # s(t) = s0 exp(-(t - t0) / tau) falls below 0.01 m/s at tau ln(s0 / 0.01); the settle
@@ -173,17 +159,17 @@ class VibrationWindowTest(RunFolderTest):
         s0, tau = 0.5, 0.05
         trace = self.speeds_trace(lambda t: np.where(t < self.t0, 2.0, s0 * np.exp(-(t - self.t0) / tau)))
         expected = tau * math.log(s0 / metrics.SETTLE_SPEED)
-        settle = metrics.vibration_window(trace, self.t0, self.t1)["settle_time"]
+        settle = metrics.vibration_window(trace, self.t0, self.t1, self.cutoff)["settle_time"]
         self.assertGreaterEqual(settle, expected - 1e-12)
         self.assertLessEqual(settle, expected + 1e-3 + 1e-12)
 
     def test_settle_time_waits_for_the_last_excursion(self):
         # Below the limit from 1.2 s, back above over [1.35, 1.36]: settled from the next frame.
         trace = self.speeds_trace(lambda t: np.where((t < 1.2) | ((t >= 1.35) & (t <= 1.36)), 0.02, 0.001))
-        self.assertClose(metrics.vibration_window(trace, self.t0, self.t1)["settle_time"], 0.361)
-        never = metrics.vibration_window(self.speeds_trace(lambda t: 0.02 + 0 * t), self.t0, self.t1)
+        self.assertClose(metrics.vibration_window(trace, self.t0, self.t1, self.cutoff)["settle_time"], 0.361)
+        never = metrics.vibration_window(self.speeds_trace(lambda t: 0.02 + 0 * t), self.t0, self.t1, self.cutoff)
         self.assertTrue(math.isnan(never["settle_time"]))
-        at_rest = metrics.vibration_window(self.speeds_trace(lambda t: 0.001 + 0 * t), self.t0, self.t1)
+        at_rest = metrics.vibration_window(self.speeds_trace(lambda t: 0.001 + 0 * t), self.t0, self.t1, self.cutoff)
         self.assertEqual(at_rest["settle_time"], 0.0)
 
     def test_contact_switch_rate(self):
@@ -196,14 +182,14 @@ class VibrationWindowTest(RunFolderTest):
         contact[:, 2] = np.arange(11)
         fixed = np.zeros((11, 3), bool)
         fixed[4, 2] = True
-        trace = trace_dict(t, np.zeros((11, 3, 3)), fixed=fixed, contact=contact)
-        self.assertClose(metrics.vibration_window(trace, 0.0, 1.0)["contact_switch_rate"], 1.5)
+        trace = runfolder.trace_dict(t, np.zeros((11, 3, 3)), fixed=fixed, contact=contact)
+        self.assertClose(metrics.vibration_window(trace, 0.0, 1.0, 2.0)["contact_switch_rate"], 1.5)
 
     def test_too_few_frames_or_no_free_particle(self):
-        trace = trace_dict(self.t, np.zeros((len(self.t), 2, 3)))
-        self.assertNotIn("vibration_rms", metrics.vibration_window(trace, 1.0, 1.001))
+        trace = runfolder.trace_dict(self.t, np.zeros((len(self.t), 2, 3)))
+        self.assertNotIn("vibration_rms", metrics.vibration_window(trace, 1.0, 1.001, self.cutoff))
         trace["fixed"][:] = True
-        self.assertNotIn("vibration_rms", metrics.vibration_window(trace, self.t0, self.t1))
+        self.assertNotIn("vibration_rms", metrics.vibration_window(trace, self.t0, self.t1, self.cutoff))
 
 
 class RunVibrationTest(RunFolderTest):
@@ -214,7 +200,7 @@ class RunVibrationTest(RunFolderTest):
         events = [{"t": 0.2, "type": "hold", "hand": "left"},
                   {"t": 1.0, "type": "ignored", "reason": "no candidate"},
                   {"t": 2.0, "type": "release", "hand": "left"}]
-        runfolder.write_summary(run, events)
+        runfolder.write_summary(run, events, runfolder.CLOTH_SCENE)
         # Frames every 1 ms to 3 s, and an event frame right after the hold and the release.
         step = np.arange(3001) / 1000.0
         t = np.sort(np.concatenate([step, [0.2, 2.0]]), kind="stable")
@@ -224,7 +210,7 @@ class RunVibrationTest(RunFolderTest):
         # after the release 0.6e-3, over the last 0.5 s 0.3e-3.
         amplitude = np.select([t < 0.7, t < 2.0, t < 2.5], [1e-3, 2e-3, 0.6e-3], 0.3e-3)
         n, f = 2, 250.0
-        d = unit_directions(n)
+        d = runfolder.unit_directions(n)
         phase = 2 * np.pi * f * t[:, None] + np.arange(n)
         x = 0.05 * t[:, None, None] + (amplitude[:, None] * np.sin(phase))[:, :, None] * d
         # Speeds: falling at 0.3 m/s, then decaying after each event (tau 0.02 s, then 0.05 s).
@@ -263,9 +249,9 @@ class RunVibrationTest(RunFolderTest):
 
     def test_run_without_events_settles_from_the_start(self):
         run = self.make_run()
-        runfolder.write_summary(run, [{"t": 0.5, "type": "ignored"}])
+        runfolder.write_summary(run, [{"t": 0.5, "type": "ignored"}], runfolder.CLOTH_SCENE)
         t = np.arange(1001) / 1000.0
-        d = unit_directions(2)
+        d = runfolder.unit_directions(2)
         v = (0.2 * np.exp(-t / 0.1))[:, None, None] * d[None]
         runfolder.write_trace(run, t, np.zeros_like(v), v)
         out, windows = metrics.vibration(run, runfiles.read_json(run / "summary.json"))
@@ -278,9 +264,9 @@ class RunVibrationTest(RunFolderTest):
         self.assertEqual(out["vibration_rms_final"], 0.0)
 
     def test_hands_never_tracked(self):
-        hands = {"t": np.arange(100) / 1000.0, "available": np.zeros(100), "x": np.ones(100),
-                 "y": np.ones(100), "z": np.ones(100), "hand_id": np.zeros(100, int)}
-        self.assertEqual(metrics.hand_jitter(hands, 0.0, 1.0), 0.0)
+        hands = pd.DataFrame({"t": np.arange(100) / 1000.0, "hand": "left", "available": 0.0,
+                              "x": 1.0, "y": 1.0, "z": 1.0})
+        self.assertEqual(metrics.hand_jitter(hands, 0.0, 1.0, 3.0), 0.0)
 
     def test_no_trace(self):
         run = self.make_run()

@@ -3,11 +3,15 @@ experiment writes results.json) kept, the analysis metrics added, missing values
 import csv
 import json
 import math
+import os
+import subprocess
+import sys
 import tempfile
 import unittest
 from pathlib import Path
 
 import numpy as np
+from PIL import Image
 
 import runfolder
 import report
@@ -57,3 +61,76 @@ class ReportTableTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+ANALYSIS = Path(__file__).resolve().parents[2] / "analysis"
+
+
+def run_script(script, *args):
+    """Runs an analysis script with this tree's drapeanalysis, failing the test on an error."""
+    env = {**os.environ, "PYTHONPATH": str(ANALYSIS), "PYTHONDONTWRITEBYTECODE": "1"}
+    done = subprocess.run([sys.executable, str(script), *map(str, args)], env=env, capture_output=True,
+                          text=True, timeout=300)
+    if done.returncode:
+        raise AssertionError(f"{script} failed ({done.returncode}):\n{done.stderr}")
+    return done.stdout
+
+
+class ReportEndToEndTest(unittest.TestCase):
+    """report.py on a small synthetic experiment: figures in three formats, the summary with
+    units, the full table folded, an animation on request; the example script redraws a figure."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls._tmp = tempfile.TemporaryDirectory()
+        cls.directory = Path(cls._tmp.name)
+        cls.runs = runfolder.write_experiment(cls.directory)
+        run_script(ANALYSIS / "report.py", cls.directory, "--frames", 12, "--animate", cls.runs[0]["id"])
+        cls.report = cls.directory / "report"
+
+    @classmethod
+    def tearDownClass(cls):
+        cls._tmp.cleanup()
+
+    def test_figures_in_three_formats(self):
+        stems = {p.stem for p in self.report.glob("*.png")}
+        for stem in ("energy_vs_time", "energy_by_scene", "vibration_vs_dt", "snapshots_a_front",
+                     "snapshots_a_side", "snapshots_b_front"):
+            self.assertIn(stem, stems)
+        for stem in stems:
+            for fmt in ("svg", "pdf"):
+                self.assertTrue((self.report / f"{stem}.{fmt}").stat().st_size > 0, f"{stem}.{fmt}")
+            with Image.open(self.report / f"{stem}.png") as png:
+                self.assertGreaterEqual(round(png.info["dpi"][0]), 200, stem)
+
+    def test_html(self):
+        page = (self.report / "report.html").read_text()
+        self.assertIn("<h2>Summary</h2>", page)
+        self.assertIn("Vibration over the last 0.5 s [mm]", page)
+        self.assertIn("<details><summary>", page)
+        self.assertLess(page.index("<h2>Summary</h2>"), page.index("<details>"))
+        for stem in ("energy_by_scene", "snapshots_b_side"):
+            self.assertIn(f'src="{stem}.png"', page)
+            self.assertIn(f"href='{stem}.pdf'", page)
+        self.assertIn(f"<video controls src='{self.runs[0]['id']}.mp4'", page)
+
+    def test_metrics_of_the_synthetic_runs(self):
+        # The last 0.5 s: a 40 Hz sinusoid of amplitude (1 + k) mm on the free particles, above
+        # the 3 x 4 cloth's cutoff (15.2 Hz); the 0.8 Hz swing below it.
+        with open(self.directory / "metrics.csv", newline="") as f:
+            table = {row["id"]: row for row in csv.DictReader(f)}
+        for k, run in enumerate(self.runs[:2]):
+            got = float(table[run["id"]]["vibration_rms_final"])
+            self.assertTrue(math.isclose(got, (1 + k) * 1e-3 / math.sqrt(2), rel_tol=0.01), got)
+            self.assertTrue(math.isclose(float(table[run["id"]]["vibration_cutoff_hz"]), 15.2, rel_tol=0.01))
+
+    def test_animation(self):
+        movie = (self.report / f"{self.runs[0]['id']}.mp4").read_bytes()
+        self.assertGreater(len(movie), 1000)
+        self.assertEqual(movie[4:8], b"ftyp", "an MP4 container")
+
+    def test_example_redraws_a_figure(self):
+        out = self.directory / "example" / "energy_b"
+        run_script(ANALYSIS / "examples" / "redraw_figure.py", self.directory, "--scene", "b", "--out", out)
+        for fmt in ("png", "svg", "pdf"):
+            self.assertTrue(out.with_suffix(f".{fmt}").stat().st_size > 0)

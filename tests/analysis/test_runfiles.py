@@ -99,7 +99,7 @@ class BadInputTest(unittest.TestCase):
     def test_hands_missing_column(self):
         runfolder.write_csv(self.run / "hands.csv", "t,hand,x,y,z", [(0.0, "left", 0.0, 0.0, 0.0)])
         with self.assertRaises(ValueError) as error:
-            metrics.read_hands(self.run / "hands.csv")
+            runfiles.read_hands(self.run / "hands.csv")
         self.assertNamesFile(error, self.run / "hands.csv", "available")
 
     def test_reference_of_another_size(self):

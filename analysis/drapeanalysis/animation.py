@@ -1,0 +1,48 @@
+"""An MP4 of one run's trace: the shaded front and side views of snapshots.py over time
+(matplotlib.animation with the ffmpeg writer; ffmpeg from install_dependencies.sh)."""
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib import animation
+
+from . import runfiles, snapshots, style
+
+MAX_FRAMES = 300
+FPS = 25
+
+
+def animate_run(run, out_file, max_frames=MAX_FRAMES, fps=FPS):
+    """Writes out_file (MP4): the run's trace frames, evenly thinned to at most max_frames, front
+    and side views side by side, played at fps frames a second. Returns out_file."""
+    summary = runfiles.read_summary(run)
+    rows, cols = (runfiles.scene_value(summary, f"cloth.{k}", 0) for k in ("rows", "cols"))
+    trace = runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))
+    dummy = runfiles.read_table(run / "dummy.csv") if (run / "dummy.csv").exists() else None
+    objects = snapshots.object_quads(dummy) if dummy is not None else None
+    points = runfiles.positions(dummy) if dummy is not None and objects is None else None
+    frames = np.unique(np.linspace(0, len(trace["t"]) - 1, min(max_frames, len(trace["t"]))).astype(int))
+    all_x = trace["x"].reshape(-1, 3)
+    lo, hi = all_x.min(axis=0) - 0.05, all_x.max(axis=0) + 0.05
+    fig, axes = plt.subplots(1, 2, figsize=(8, 4.5))
+    events = sorted((float(e["t"]), e["type"]) for e in summary.get("events", []) if e.get("type") != "ignored")
+
+    def draw(k):
+        for ax, view in zip(axes, snapshots.VIEWS):
+            ax.clear()
+            horizontal = snapshots.VIEWS[view][0]
+            x = trace["x"][k]
+            cloth = snapshots.cloth_quads(x, rows, cols)
+            snapshots.draw_view(ax, view, cloth, snapshots.shade(cloth, snapshots.CLOTH_RGB, view),
+                                objects, points, x[trace["fixed"][k]])
+            ax.set_xlim(lo[horizontal], hi[horizontal])
+            ax.set_ylim(lo[1], hi[1])
+            ax.set_aspect("equal")
+            ax.grid(False)
+            ax.set_title(f"{view} ({'x' if horizontal == 0 else 'z'}-y)")
+        last = [kind for t, kind in events if t <= trace["t"][k] + 1e-9]
+        fig.suptitle(f"{run.name}: t = {trace['t'][k]:.3f} s" + (f", after {last[-1]}" if last else ""))
+        return []
+
+    movie = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
+    movie.save(out_file, writer=animation.FFMpegWriter(fps=fps, bitrate=2000), dpi=style.DPI // 2)
+    plt.close(fig)
+    return out_file

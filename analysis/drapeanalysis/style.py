@@ -1,0 +1,131 @@
+"""One style for every figure of the report (docs/analysis.md, Figures): text of at least 8 pt,
+one colour per integrator, one line style and marker per step size, legends beside the axes,
+event labels staggered, empty panels saying why, and each figure as PNG (200 dpi), SVG and PDF."""
+import warnings
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+MIN_FONT = 8
+DPI = 200
+FORMATS = ("png", "svg", "pdf")
+
+RC = {
+    "font.size": 9, "axes.titlesize": 9, "axes.labelsize": 9, "xtick.labelsize": MIN_FONT,
+    "ytick.labelsize": MIN_FONT, "legend.fontsize": MIN_FONT, "figure.titlesize": 10,
+    "lines.linewidth": 1.2, "lines.markersize": 4, "axes.grid": True, "grid.alpha": 0.3,
+    "savefig.dpi": DPI, "svg.fonttype": "none", "pdf.fonttype": 42,
+}
+plt.rcParams.update(RC)
+
+# One colour per integrator in every figure.
+INTEGRATOR_COLORS = {"leapfrog": "tab:blue", "symplectic-euler": "tab:orange",
+                     "implicit-euler": "tab:green", "arkode-erk": "tab:red",
+                     "arkode-dirk": "tab:purple", "arkode-imex": "tab:brown"}
+INTEGRATOR_MARKERS = {"leapfrog": "o", "symplectic-euler": "s", "implicit-euler": "^",
+                      "arkode-erk": "v", "arkode-dirk": "D", "arkode-imex": "P"}
+# Line styles and markers in order: the k-th step size of an integrator (or k-th variant).
+LINE_STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)), (0, (1, 3)))
+MARKERS = ("o", "s", "^", "v", "D", "P", "X", "*")
+
+
+def integrator_color(row, default=None):
+    """The colour of a run's integrator (default for unknown names)."""
+    return INTEGRATOR_COLORS.get(row.get("integrator.name") or row.get("integrator"), default)
+
+
+def variant_style(k):
+    """Line style and marker of the k-th variant (step size) of a series: no two alike for
+    k < 6."""
+    return {"ls": LINE_STYLES[k % len(LINE_STYLES)], "marker": MARKERS[k % len(MARKERS)]}
+
+
+def legend_beside(ax, **kwargs):
+    """The legend outside the axes, to their right, so it never hides data."""
+    handles, labels = ax.get_legend_handles_labels()
+    if handles:
+        ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0,
+                  frameon=False, **kwargs)
+
+
+def legend_below(fig, axes, ncol=3):
+    """One legend for the figure, under its panels (labels gathered from `axes`, no repeats)."""
+    seen = {}
+    for ax in axes:
+        for handle, text in zip(*ax.get_legend_handles_labels()):
+            seen.setdefault(text, handle)
+    if seen:
+        fig.legend(list(seen.values()), list(seen), loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                   ncol=ncol, frameon=False)
+
+
+def mark_events(ax, events, levels=3):
+    """Dotted vertical lines at (t, label) events, labelled above the axes (never over the
+    data): a label starts a level higher than its left neighbour when they would overlap, and
+    the title moves up to clear the levels used. Call after setting the title and x limits."""
+    placed = []  # (level, right end in axes fraction)
+    x0, x1 = ax.get_xlim()
+    width = ax.get_window_extent().width or 400
+    for t, text in sorted(events):
+        ax.axvline(t, c="0.45", lw=0.7, ls=":")
+        left = (t - x0) / (x1 - x0)
+        # Text width in axes fraction: about 0.6 em a character at MIN_FONT points, 200 dpi.
+        right = left + (len(text) + 1) * 0.6 * MIN_FONT * ax.figure.dpi / 72 / width
+        level = next((k for k in range(levels) if all(r < left or lv != k for lv, r in placed)),
+                     len(placed) % levels)
+        placed.append((level, right))
+        ax.text(t, 1.01 + 0.075 * level, text, transform=ax.get_xaxis_transform(), fontsize=MIN_FONT,
+                va="bottom", ha="left", color="0.25", clip_on=False)
+    if placed:
+        used = 1 + max(level for level, _ in placed)
+        ax.set_title(ax.get_title(), pad=4 + used * MIN_FONT * 1.4)
+
+
+def _overlap(a, b):
+    """Overlap area of two boxes (x0, y0, x1, y1)."""
+    return max(0.0, min(a[2], b[2]) - max(a[0], b[0])) * max(0.0, min(a[3], b[3]) - max(a[1], b[1]))
+
+
+def place_labels(ax, points, texts, color):
+    """Annotates data points with short texts, each in the spot around its point (right, left,
+    above, below, the corners) whose box overlaps least the labels and points already placed,
+    so neighbouring labels do not overlap. Call after the axes' scales and limits are final."""
+    ax.autoscale_view()
+    px_per_pt = ax.figure.dpi / 72
+    char, height, gap = 0.62 * MIN_FONT * px_per_pt, 1.2 * MIN_FONT * px_per_pt, 3 * px_per_pt
+    if not hasattr(ax, "_drape_boxes"):
+        ax._drape_boxes = []
+    boxes = ax._drape_boxes
+    screen = [tuple(ax.transData.transform(p)) for p in points]
+    boxes += [(x - gap, y - gap, x + gap, y + gap) for x, y in screen]
+    for (x, y), (px, py), text in zip(points, screen, texts):
+        w = char * len(text)
+        spots = [(gap, -height / 2), (-gap - w, -height / 2), (-w / 2, gap), (-w / 2, -gap - height),
+                 (gap, gap), (gap, -gap - height), (-gap - w, gap), (-gap - w, -gap - height)]
+        dx, dy = min(spots, key=lambda d: sum(_overlap((px + d[0], py + d[1], px + d[0] + w, py + d[1] + height), b)
+                                             for b in boxes))
+        boxes.append((px + dx, py + dy, px + dx + w, py + dy + height))
+        ax.annotate(text, (x, y), xytext=(dx, dy), textcoords="offset pixels", fontsize=MIN_FONT,
+                    color=color, va="bottom", ha="left")
+
+
+def empty_note(ax, why):
+    """An empty panel that says why it is empty."""
+    ax.text(0.5, 0.5, why, transform=ax.transAxes, ha="center", va="center", fontsize=MIN_FONT,
+            color="0.3", wrap=True)
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.grid(False)
+
+
+def save(fig, out_dir, stem):
+    """Writes the figure as PNG (200 dpi), SVG and PDF and closes it; returns the stem."""
+    with warnings.catch_warnings():  # figures with outside legends cannot always be tightened
+        warnings.simplefilter("ignore")
+        fig.tight_layout()
+    for fmt in FORMATS:
+        fig.savefig(out_dir / f"{stem}.{fmt}", dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+    return stem
