@@ -7,8 +7,11 @@
 #include "core/scene/input_error.hpp"
 #include "core/input/recording.hpp"
 #include "core/scene/scene.hpp"
+#include "experiments/cli/convert_command.hpp"
+#include "experiments/cli/did_you_mean.hpp"
 #include "experiments/cli/experiment_cli.hpp"
 #include "experiments/cli/run_stats.hpp"
+#include "experiments/run/provenance.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "integrators/interface/registry.hpp"
 #include "experiments/viewer/view_command.hpp"
@@ -50,6 +53,8 @@ int list_integrators() {
 int main(int argc, char** argv) {
   CLI::App app{"drapelab: a numerical testbed for virtual draping"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", [] { return drape::version_text(); },
+                       "print version, git commit, build type, SUNDIALS and machine, then exit");
 
   std::string scene_file, out_dir;
   std::vector<std::string> overrides;
@@ -60,14 +65,26 @@ int main(int argc, char** argv) {
       ->take_all();
   bool quiet = false;
   run->add_flag("--quiet,-q", quiet, "print nothing on success (the stats block is summary.json)");
+  run->footer(
+      "Examples:\n"
+      "  drapelab run experiments/scenes/drape_dress_form.json --out out/drape\n"
+      "  drapelab run experiments/scenes/fig2_hold.json --out out/fig2 \\\n"
+      "      --set duration=1 --set output.vtk_interval=0.04   # ParaView: out/fig2/frames/\n"
+      "  drapelab run experiments/scenes/combination4_hold_release_attach.json --out out/c4 \\\n"
+      "      --set integrator.name=arkode-dirk --set integrator.dt=0.001");
 
-  app.add_subcommand("integrators", "list integrators and ARKODE tables with their orders");
+  app.add_subcommand("integrators", "list integrators and ARKODE tables with their orders")
+      ->footer("Example:\n  drapelab integrators");
 
   std::string convert_in, convert_out;
   auto* convert = app.add_subcommand(
       "convert", "convert a hand recording (Kinect v2 CSV, NTU .skeleton, drapelab) to drapelab JSON Lines");
   convert->add_option("in", convert_in, "recording to read")->required();
   convert->add_option("out", convert_out, "drapelab recording (.jsonl) to write")->required();
+  convert->footer(
+      "Prints the frames, duration and dropped frames of the recording.\n"
+      "Example:\n"
+      "  drapelab convert experiments/recordings/kinect-v2/Ges03_drawlines.csv out/ges03.jsonl");
 
   const drape::ExperimentCommands experiment_commands(app);
   drape::add_view_command(app);  // runs inside app.parse (docs/viewer.md)
@@ -75,16 +92,19 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() != 0) {
+      if (const auto hint = drape::did_you_mean(app, std::vector<std::string>(argv + 1, argv + argc))) {
+        std::cerr << *hint << "\nRun with --help for more information.\n";
+        return drape::exit_input;
+      }
+    }
     const int code = app.exit(e);
     return code == 0 ? 0 : drape::exit_input;
   }
 
   try {
     if (run->parsed()) return run_command(scene_file, out_dir, overrides, quiet);
-    if (convert->parsed()) {
-      drape::convert_recording(convert_in, convert_out);
-      return drape::exit_ok;
-    }
+    if (convert->parsed()) return drape::convert_command(convert_in, convert_out);
     if (const int code = experiment_commands.dispatch(); code >= 0) return code;
     return list_integrators();
   } catch (const drape::InputError& e) {

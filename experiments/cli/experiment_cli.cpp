@@ -54,7 +54,8 @@ int experiment_command(const std::string& file, const std::string& out_dir, int 
   options.out_dir = out_dir;
   options.jobs = jobs;
   if (!shard.empty()) options.shard = parse_shard(shard);
-  options.progress = progress && ::isatty(2);
+  options.progress = progress;
+  options.terminal = ::isatty(2) != 0;
   if (list_only) {
     for (const RunSpec& run : expand_runs(experiment)) {
       if (options.shard && !options.shard->contains(run.index)) continue;
@@ -108,14 +109,21 @@ ExperimentCommands::ExperimentCommands(CLI::App& app) {
   m_experiment->add_option("--shard", m_shard,
                            "run only the K-th of N slices (1-based K/N), then `drapelab merge`");
   m_experiment->add_flag("--list", m_list, "print the plan (index, run id, values) and stop");
-  m_experiment->add_flag("--no-progress", m_no_progress, "no progress bar even on a terminal");
+  m_experiment->add_flag("--no-progress", m_no_progress, "no progress display (on a terminal) or per-run lines (otherwise)");
+  m_experiment->footer(
+      "Examples:\n"
+      "  drapelab experiment experiments/definitions/integrator_comparison.json --out out/ic\n"
+      "  drapelab experiment experiments/definitions/vibration.json --out out/vib --list\n"
+      "  drapelab experiment experiments/definitions/vibration.json --out out/vib --shard 1/4 -j 2");
 
   m_merge = app.add_subcommand("merge", "join the runs of shards into DIR/results.{csv,json}");
   m_merge->add_option("dir", m_out, "experiment output folder to complete")->required();
   m_merge->add_option("sources", m_sources, "other output folders of the same experiment");
+  m_merge->footer("Example:\n  drapelab merge out/vib machine2/out/vib machine3/out/vib");
 
   m_report = app.add_subcommand("report", "plots and report.html of an experiment folder");
   m_report->add_option("dir", m_out, "experiment output folder")->required();
+  m_report->footer("Example:\n  drapelab report out/integrator_comparison");
   m_report->allow_extras();  // everything after DIR goes to analysis/report.py
 }
 

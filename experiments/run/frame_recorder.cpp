@@ -21,7 +21,8 @@ FrameRecorder::FrameRecorder(const OutputOptions& options, const std::filesystem
     : m_system(system),
       m_trace_interval(options.trace_interval),
       m_vtk_interval(options.vtk_interval),
-      m_frames_dir(out_dir / "frames") {
+      m_frames_dir(out_dir / "frames"),
+      m_series(out_dir / "frames" / "frames.vtk.series") {
   if (m_trace_interval > 0.0) {
     m_trace.emplace(out_dir / "trace.csv");
     if (!*m_trace) throw std::runtime_error("cannot write " + (out_dir / "trace.csv").string());
@@ -43,7 +44,9 @@ void FrameRecorder::on_step(const Simulation& simulation, bool event) {
            [this](double t, const Eigen::VectorXd& y, bool e) { write_trace(t, y, e); });
   if (m_vtk_interval > 0.0)
     record(simulation, event, m_vtk_interval, m_next_vtk,
-           [this](double t, const Eigen::VectorXd& y, bool) { write_vtk(t, y); });
+           [this, &simulation](double t, const Eigen::VectorXd& y, bool) {
+             write_vtk(simulation, t, y);
+           });
 }
 
 template <class Write>
@@ -60,24 +63,36 @@ void FrameRecorder::record(const Simulation& simulation, bool event, double inte
   for (; t >= next - tolerance; next += interval) {}
 }
 
-void FrameRecorder::write_vtk(double t, const Eigen::VectorXd& y) {
-  write_cloth_vtk(m_frames_dir / fmt::format("frame_{:05d}.vtk", m_vtk_count++), m_system, y, t);
+int FrameRecorder::contact(const Eigen::VectorXd& y, int i) const {
+  const Dummy* dummy = m_system.dummy();
+  if (!dummy) return -1;
+  // The object particle whose threshold sphere holds this particle: switches of it between
+  // frames are the collision switching that the vibration metrics look for.
+  return dummy->nearest_within(y.segment<3>(3 * i), m_system.params().collision.threshold).index;
+}
+
+void FrameRecorder::write_vtk(const Simulation& simulation, double t, const Eigen::VectorXd& y) {
+  const auto n = static_cast<std::size_t>(m_system.num_particles());
+  ClothFrameData data{std::vector<int>(n, 0), std::vector<int>(n, -1)};
+  // Holds change only at events, which are step ends: the holds after the last step are the
+  // holds at every frame time inside it.
+  for (const HandStatus& hand : simulation.manipulator().hands(t, y))
+    if (hand.held >= 0) data.held[static_cast<std::size_t>(hand.held)] = 1;
+  for (std::size_t i = 0; i < n; ++i) data.contact[i] = contact(y, static_cast<int>(i));
+  const std::string name = fmt::format("frame_{:05d}.vtk", m_vtk_count++);
+  write_cloth_vtk(m_frames_dir / name, m_system, y, t, data);
+  m_series.add(name, t);
 }
 
 void FrameRecorder::write_trace(double t, const Eigen::VectorXd& y, bool event) {
-  const Dummy* dummy = m_system.dummy();
-  const double threshold = m_system.params().collision.threshold;
   const int n = m_system.num_particles();
   const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(n);
   for (int i = 0; i < n; ++i) {
     const Vec3 x = y.segment<3>(3 * i);
     const Vec3 v = y.segment<3>(n3 + 3 * i);
-    // The object particle whose threshold sphere holds this particle: switches of it between
-    // frames are the collision switching that the vibration metrics look for.
-    const int contact = dummy ? dummy->nearest_within(x, threshold).index : -1;
     *m_trace << fmt::format("{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{},{},{}\n",
                             t, i, x.x(), x.y(), x.z(), v.x(), v.y(), v.z(),
-                            m_system.constraints().is_fixed(i) ? 1 : 0, contact, event ? 1 : 0);
+                            m_system.constraints().is_fixed(i) ? 1 : 0, contact(y, i), event ? 1 : 0);
   }
 }
 

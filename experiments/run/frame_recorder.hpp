@@ -12,10 +12,11 @@
 #include "core/model/cloth_system.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/run/simulation.hpp"
+#include "experiments/run/vtk_series.hpp"
 
 namespace drape {
 
-/// Writes trace.csv and frames/frame_NNNNN.vtk for the intervals of a scene's `output`.
+/// Writes trace.csv, frames/frame_NNNNN.vtk and frames/frames.vtk.series for the intervals of a scene's `output`.
 class FrameRecorder : public SimulationObserver {
  public:
   /// Opens the files the output options ask for (none when both intervals are 0).
@@ -31,7 +32,9 @@ class FrameRecorder : public SimulationObserver {
   void record(const Simulation& simulation, bool event, double interval, double& next,
               Write write);
   void write_trace(double t, const Eigen::VectorXd& y, bool event);
-  void write_vtk(double t, const Eigen::VectorXd& y);
+  void write_vtk(const Simulation& simulation, double t, const Eigen::VectorXd& y);
+  /// The object particle within the collision threshold of particle i at state y, -1 for none.
+  int contact(const Eigen::VectorXd& y, int i) const;
 
   const ClothSystem& m_system;
   double m_trace_interval;
@@ -41,6 +44,7 @@ class FrameRecorder : public SimulationObserver {
   int m_vtk_count = 0;
   std::filesystem::path m_frames_dir;
   std::optional<std::ofstream> m_trace;
+  VtkSeries m_series;
 };
 
 }  // namespace drape

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "experiments/run/frame_recorder.hpp"
+#include "experiments/run/provenance.hpp"
 #include "experiments/run/run_files.hpp"
 #include "experiments/run/scene_simulation.hpp"
 #include "experiments/run/series_writers.hpp"
@@ -59,7 +60,10 @@ nlohmann::json run_summary(const SceneSimulation& run, const EnergyWriter& energ
 
 }  // namespace
 
-RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
+RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
+                     SimulationObserver* observer) {
+  // Taken before the run, so `date` is when it started.
+  const nlohmann::json provenance = run_provenance();
   SceneSimulation run(scene);
   Simulation& simulation = run.simulation();
   const ClothSystem& system = run.system();
@@ -75,9 +79,11 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir) {
   }
   FrameRecorder frames(scene.output, out_dir, system);
   simulation.add_observer(frames);
+  if (observer) simulation.add_observer(*observer);
 
   const RunStatus& status = simulation.run();
   nlohmann::json summary = run_summary(run, energy);
+  summary.update(provenance);
   if (status.status == "ok") write_state_csv(out_dir / "state.csv", system, simulation.state());
   write_json(out_dir / "summary.json", summary);
   const int code = status.status == "ok" ? exit_ok : exit_diverged;

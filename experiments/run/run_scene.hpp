@@ -7,6 +7,8 @@
 
 #include "core/scene/scene.hpp"
 
+#include "experiments/run/simulation.hpp"
+
 namespace drape {
 
 /// Exit statuses of `drapelab` (docs/model.md section 9).
@@ -21,7 +23,9 @@ struct RunOutcome {
 };
 
 /// Runs the scene and writes summary.json, energy.csv and state.csv into out_dir.
-/// Throws InputError for invalid input found while building the model.
-RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir);
+/// Throws InputError for invalid input found while building the model. `observer`, if given,
+/// watches the run too (an experiment's progress display).
+RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
+                     SimulationObserver* observer = nullptr);
 
 }  // namespace drape

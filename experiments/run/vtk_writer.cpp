@@ -11,6 +11,10 @@ namespace drape {
 
 namespace {
 
+void write_int_values(std::ofstream& out, const std::vector<int>& values) {
+  for (const int v : values) out << v << "\n";
+}
+
 std::ofstream open_vtk(const std::filesystem::path& file, const std::string& title) {
   std::ofstream out(file);
   if (!out) throw std::runtime_error("cannot write " + file.string());
@@ -21,7 +25,7 @@ std::ofstream open_vtk(const std::filesystem::path& file, const std::string& tit
 }  // namespace
 
 void write_cloth_vtk(const std::filesystem::path& file, const ClothSystem& system,
-                     const Eigen::VectorXd& y, double t) {
+                     const Eigen::VectorXd& y, double t, const ClothFrameData& data) {
   const Cloth& cloth = system.cloth();
   const int n = system.num_particles();
   const int rows = cloth.params.rows, cols = cloth.params.cols;
@@ -42,8 +46,16 @@ void write_cloth_vtk(const std::filesystem::path& file, const ClothSystem& syste
   for (int i = 0; i < n; ++i)
     out << fmt::format("{:.17g} {:.17g} {:.17g}\n", y[n3 + 3 * i], y[n3 + 3 * i + 1],
                        y[n3 + 3 * i + 2]);
+  std::vector<int> fixed(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) fixed[static_cast<std::size_t>(i)] = system.constraints().is_fixed(i);
   out << "SCALARS fixed int 1\nLOOKUP_TABLE default\n";
-  for (int i = 0; i < n; ++i) out << (system.constraints().is_fixed(i) ? 1 : 0) << "\n";
+  write_int_values(out, fixed);
+  // Legacy readers load only the first SCALARS unless told to read all (vtkDataReader::
+  // ReadAllScalars); arrays of a FIELD block they always load, so the later flags go there.
+  out << fmt::format("FIELD point_flags 2\nheld 1 {} int\n", n);
+  write_int_values(out, data.held);
+  out << fmt::format("contact 1 {} int\n", n);
+  write_int_values(out, data.contact);
   if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 

@@ -14,6 +14,7 @@
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
 #include "core/scene/scene.hpp"
+#include "experiments/sweep/progress_reporter.hpp"
 #include "experiments/sweep/results_table.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "integrators/interface/integrator_options.hpp"
@@ -23,44 +24,6 @@ namespace drape {
 namespace fs = std::filesystem;
 
 namespace {
-
-/// A one-line bar on stderr, redrawn as runs finish; silent when disabled.
-class ProgressBar {
- public:
-  ProgressBar(int total, bool enabled)
-      : m_total(total), m_enabled(enabled), m_start(std::chrono::steady_clock::now()) {}
-
-  void update(const ExperimentTally& tally) {
-    if (!m_enabled) return;
-    const int done = tally.skipped + tally.ok + tally.unstable + tally.errors;
-    const int executed = done - tally.skipped;
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
-    const int width = 28;
-    const int filled = m_total > 0 ? width * done / m_total : width;
-    std::string eta = "--:--";
-    if (executed > 0) eta = clock(elapsed / executed * (m_total - done));
-    std::cerr << fmt::format("\r[{}{}] {}/{}  ok {}  unstable {}  error {}  {} elapsed  ETA {}  ",
-                             std::string(filled, '#'), std::string(width - filled, '-'), done,
-                             m_total, tally.ok + tally.skipped, tally.unstable, tally.errors,
-                             clock(elapsed), eta)
-              << std::flush;
-  }
-
-  void finish() {
-    if (m_enabled) std::cerr << "\n";
-  }
-
- private:
-  static std::string clock(double seconds) {
-    const long s = std::lround(seconds);
-    return s >= 3600 ? fmt::format("{}:{:02d}:{:02d}", s / 3600, s / 60 % 60, s % 60)
-                     : fmt::format("{}:{:02d}", s / 60, s % 60);
-  }
-  int m_total;
-  bool m_enabled;
-  std::chrono::steady_clock::time_point m_start;
-};
 
 // What a finished folder must match to count as this run: its definition, not its place.
 nlohmann::json run_identity(const RunSpec& run) {
@@ -96,14 +59,15 @@ std::vector<std::string> with(std::vector<std::string> assignments, const std::s
 }
 
 // Largest stable value of one parameter, by bisection (geometric: step sizes span decades).
-nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir) {
+nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, SimulationObserver* observer) {
   const BisectSpec& b = *run.bisect;
   nlohmann::json probes = nlohmann::json::array();
   nlohmann::json last_stable_summary;
   double wall = 0.0;
   auto probe = [&](double value) {
     const Scene scene = load_scene(run.scene_path.string(), with(run.assignments(), b.parameter, value));
-    const RunOutcome o = run_scene(scene, dir / "probes" / fmt::format("{:02d}", probes.size()));
+    const RunOutcome o =
+        run_scene(scene, dir / "probes" / fmt::format("{:02d}", probes.size()), observer);
     const double drift = o.summary.value("energy_drift_max_rel", 0.0);
     const bool stable = o.status == "ok" && (!b.max_drift || drift <= *b.max_drift);
     wall += o.summary.value("wall_seconds", 0.0);
@@ -145,7 +109,9 @@ nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir) {
 }
 
 // Runs one plan entry in its own folder; never throws (a failure is the run's status).
-nlohmann::json execute_run(const RunSpec& run, const fs::path& dir, bool& skipped) {
+// `observer` (may be null) watches the simulation(s) of the run.
+nlohmann::json execute_run(const RunSpec& run, const fs::path& dir, bool& skipped,
+                           SimulationObserver* observer) {
   skipped = false;
   if (auto row = finished_row(run, dir)) {
     skipped = true;
@@ -157,10 +123,10 @@ nlohmann::json execute_run(const RunSpec& run, const fs::path& dir, bool& skippe
     fs::create_directories(dir);
     write_json_atomic(dir / "run.json", run_identity(run));
     if (run.bisect) {
-      row = run_bisect(run, dir);
+      row = run_bisect(run, dir, observer);
     } else {
       const Scene scene = load_scene(run.scene_path.string(), run.assignments());
-      row = result_row(run, run_scene(scene, dir).summary);
+      row = result_row(run, run_scene(scene, dir, observer).summary);
     }
   } catch (const std::exception& e) {
     row = error_row(run, e.what());
@@ -247,22 +213,28 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
   ExperimentTally tally;
   tally.planned = static_cast<int>(slice.size());
   std::vector<nlohmann::json> rows(slice.size());
-  ProgressBar bar(tally.planned, options.progress);
-  bar.update(tally);
+  ProgressReporter progress(tally.planned,
+                            !options.progress  ? ProgressStyle::Off
+                            : options.terminal ? ProgressStyle::Terminal
+                                               : ProgressStyle::Lines,
+                            std::cerr);
   std::mutex mutex;
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t k = next++; k < slice.size(); k = next++) {
       bool skipped = false;
-      nlohmann::json row = execute_run(*slice[k], options.out_dir / "runs" / slice[k]->id, skipped);
+      const std::string& id = slice[k]->id;
+      progress.run_started(id);
+      RunProgressObserver observer(progress, id);
+      nlohmann::json row = execute_run(*slice[k], options.out_dir / "runs" / id, skipped, &observer);
       const std::string status = row.value("status", "error");
+      progress.run_finished(id, status, skipped);
       const std::lock_guard<std::mutex> lock(mutex);
       if (skipped) ++tally.skipped;
       else if (status == "ok") ++tally.ok;
       else if (status == "error") ++tally.errors;
       else ++tally.unstable;
       rows[k] = std::move(row);
-      bar.update(tally);
     }
   };
   const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
@@ -271,7 +243,7 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
   std::vector<std::thread> pool;
   for (std::size_t j = 0; j < jobs; ++j) pool.emplace_back(worker);
   for (auto& thread : pool) thread.join();
-  bar.finish();
+  progress.finish();
 
   if (options.shard) {
     fs::create_directories(options.out_dir / "shards");

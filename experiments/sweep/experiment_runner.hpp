@@ -15,7 +15,8 @@ struct ExperimentOptions {
   std::filesystem::path out_dir;
   int jobs = 0;                ///< worker threads; 0 = hardware concurrency
   std::optional<Shard> shard;  ///< run only this slice of the plan
-  bool progress = false;       ///< draw a progress bar on stderr
+  bool progress = false;       ///< show progress on stderr ...
+  bool terminal = false;       ///< ... redrawn in place (a terminal) or one line per finished run
 };
 
 /// What happened to the runs of one invocation.

@@ -20,7 +20,8 @@ const std::vector<std::string>& metric_columns() {
       "energy_final", "energy_drift_max_abs", "energy_drift_max_rel", "energy_drift_final_rel",
       "events", "hold_count", "release_count", "map_count", "ignored_count", "attach_count",
       "attach_error_mean", "attach_error_max", "bisect_parameter", "stable_value",
-      "unstable_value", "probes"};
+      "unstable_value", "probes", "version", "git_commit", "build_type", "sundials_version",
+      "date", "machine.hostname", "machine.cpu", "machine.cores"};
   return names;
 }
 
@@ -61,6 +62,11 @@ nlohmann::json result_row(const RunSpec& run, const nlohmann::json& summary) {
   const double e0 = summary.value("energy_initial", 0.0);
   const double e1 = summary.value("energy_final", 0.0);
   row["energy_drift_final_rel"] = std::abs(e1 - e0) / std::max(std::abs(e0), 1e-300);
+  // Provenance (docs/outputs.md): the build and machine of each run, as its own columns.
+  for (const char* key : {"version", "git_commit", "build_type", "sundials_version", "date"})
+    if (summary.contains(key)) row[key] = summary[key];
+  if (summary.contains("machine"))
+    for (const auto& item : summary["machine"].items()) row["machine." + item.key()] = item.value();
   if (summary.contains("counters"))
     for (const auto& item : summary["counters"].items()) row["counters." + item.key()] = item.value();
 

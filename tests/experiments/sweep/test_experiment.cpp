@@ -62,9 +62,13 @@ json read_json(const fs::path& file) {
   return json::parse(in);
 }
 
-// Rows without the one column that differs between two executions of the same run.
+// Rows without the columns that differ between two executions of the same run: the wall time
+// and the date it ran (provenance, docs/outputs.md).
 json without_wall_time(json results) {
-  for (auto& row : results["runs"]) row.erase("wall_seconds");
+  for (auto& row : results["runs"]) {
+    row.erase("wall_seconds");
+    row.erase("date");
+  }
   results.erase("shard");
   return results;
 }
