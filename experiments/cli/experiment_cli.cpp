@@ -67,10 +67,11 @@ int experiment_command(const std::string& file, const std::string& out_dir, int 
   }
   const ExperimentTally t = run_experiment(experiment, options);
   std::cerr << fmt::format(
-      "drapelab: {}: {} runs{}: {} ok, {} diverged or failed, {} could not run, {} resumed\n",
+      "drapelab: {}: {} runs{}: {} ok, {} diverged or failed, {} could not run, {} crashed, "
+      "{} resumed\n",
       experiment.name, t.planned, options.shard ? " in shard " + shard : "", t.ok, t.unstable,
-      t.errors, t.skipped);
-  return t.errors > 0 ? 1 : 0;
+      t.errors, t.crashed, t.skipped);
+  return t.errors + t.crashed > 0 ? 1 : 0;
 }
 
 int merge_command(const std::string& out_dir, const std::vector<std::string>& sources) {

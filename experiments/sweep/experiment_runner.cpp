@@ -3,19 +3,19 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iostream>
-#include <mutex>
 #include <thread>
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
 #include "core/scene/scene.hpp"
+#include "experiments/sweep/child_runs.hpp"
 #include "experiments/sweep/progress_reporter.hpp"
 #include "experiments/sweep/results_table.hpp"
+#include "experiments/sweep/deliberate_crash.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "integrators/interface/integrator_options.hpp"
 
@@ -41,12 +41,15 @@ std::optional<nlohmann::json> read_json_if_present(const fs::path& file) {
   return value;
 }
 
-// The row of a run finished earlier, or nothing when it must run (again).
+// The row of a run finished earlier, or nothing when it must run (again): a run that could not
+// run or crashed is retried, in case the cause (a full disk, a bug since fixed) is gone.
 std::optional<nlohmann::json> finished_row(const RunSpec& run, const fs::path& dir) {
   const auto spec = read_json_if_present(dir / "run.json");
   if (!spec || run_identity(run) != *spec) return std::nullopt;
   auto row = read_json_if_present(dir / "result.json");
-  if (!row || row->value("status", "error") == "error") return std::nullopt;
+  if (!row) return std::nullopt;
+  const std::string status = row->value("status", "error");
+  if (status == "error" || status == "crashed") return std::nullopt;
   (*row)["index"] = run.index;
   (*row)["reference"] = run.reference;
   return row;
@@ -108,20 +111,16 @@ nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, SimulationObs
   return row;
 }
 
-// Runs one plan entry in its own folder; never throws (a failure is the run's status).
-// `observer` (may be null) watches the simulation(s) of the run.
-nlohmann::json execute_run(const RunSpec& run, const fs::path& dir, bool& skipped,
-                           SimulationObserver* observer) {
-  skipped = false;
-  if (auto row = finished_row(run, dir)) {
-    skipped = true;
-    return *row;
-  }
+// Runs one plan entry in its own folder and writes its result.json; never throws (a failure is
+// the run's status). Runs in a child process (run_experiment), whose progress stays in the child.
+void execute_run(const RunSpec& run, const fs::path& dir) {
+  SimulationObserver* const observer = nullptr;
   nlohmann::json row;
   try {
     fs::remove_all(dir);  // leftovers of an interrupted run would mix with the new files
     fs::create_directories(dir);
     write_json_atomic(dir / "run.json", run_identity(run));
+    crash_if_asked_for_test(run.id);
     if (run.bisect) {
       row = run_bisect(run, dir, observer);
     } else {
@@ -134,7 +133,23 @@ nlohmann::json execute_run(const RunSpec& run, const fs::path& dir, bool& skippe
   try {
     write_json_atomic(dir / "result.json", row);
   } catch (const std::exception& e) {
-    row = error_row(run, e.what());
+    std::cerr << "drapelab: " << run.id << ": " << e.what() << "\n";
+  }
+}
+
+// The row of a run whose child ended: its result.json, or a crashed row the parent writes in
+// its place when the child died before writing one (or exited without a result).
+nlohmann::json ended_row(const RunSpec& run, const fs::path& dir, const ChildEnd& end) {
+  if (end.ok()) {
+    if (auto row = read_json_if_present(dir / "result.json")) return *row;
+  }
+  nlohmann::json row = error_row(run, describe_child_end(end));
+  row["status"] = "crashed";
+  try {
+    fs::create_directories(dir);
+    write_json_atomic(dir / "result.json", row);
+  } catch (const std::exception&) {
+    // The row still reaches the results table; resume reruns the run either way.
   }
   return row;
 }
@@ -218,31 +233,39 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
                             : options.terminal ? ProgressStyle::Terminal
                                                : ProgressStyle::Lines,
                             std::cerr);
-  std::mutex mutex;
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t k = next++; k < slice.size(); k = next++) {
-      bool skipped = false;
-      const std::string& id = slice[k]->id;
-      progress.run_started(id);
-      RunProgressObserver observer(progress, id);
-      nlohmann::json row = execute_run(*slice[k], options.out_dir / "runs" / id, skipped, &observer);
-      const std::string status = row.value("status", "error");
-      progress.run_finished(id, status, skipped);
-      const std::lock_guard<std::mutex> lock(mutex);
-      if (skipped) ++tally.skipped;
-      else if (status == "ok") ++tally.ok;
-      else if (status == "error") ++tally.errors;
-      else ++tally.unstable;
-      rows[k] = std::move(row);
+  // Finished runs are read here; the others run each in a child process, so that a crash, an
+  // abort or the out-of-memory killer ends one run, not the experiment.
+  std::vector<std::size_t> pending;
+  for (std::size_t k = 0; k < slice.size(); ++k) {
+    if (auto row = finished_row(*slice[k], options.out_dir / "runs" / slice[k]->id)) {
+      progress.run_finished(slice[k]->id, row->value("status", "error"), true);
+      rows[k] = std::move(*row);
+      ++tally.skipped;
+    } else {
+      pending.push_back(k);
     }
-  };
+  }
+  bar.update(tally);
   const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t jobs = std::min<std::size_t>(options.jobs > 0 ? options.jobs : hardware,
-                                                 std::max<std::size_t>(1, slice.size()));
-  std::vector<std::thread> pool;
-  for (std::size_t j = 0; j < jobs; ++j) pool.emplace_back(worker);
-  for (auto& thread : pool) thread.join();
+  const std::size_t jobs = options.jobs > 0 ? options.jobs : hardware;
+  auto dir_of = [&](std::size_t p) { return options.out_dir / "runs" / slice[pending[p]]->id; };
+  run_in_children(
+      pending.size(), jobs,
+      [&](std::size_t p) {
+        execute_run(*slice[pending[p]], dir_of(p));
+        return 0;
+      },
+      [&](std::size_t p, const ChildEnd& end) {
+        nlohmann::json row = ended_row(*slice[pending[p]], dir_of(p), end);
+        const std::string status = row.value("status", "error");
+        progress.run_finished(slice[pending[p]]->id, status, false);
+        if (status == "ok") ++tally.ok;
+        else if (status == "error") ++tally.errors;
+        else if (status == "crashed") ++tally.crashed;
+        else ++tally.unstable;
+        rows[pending[p]] = std::move(row);
+      },
+      [&](std::size_t p) { progress.run_started(slice[pending[p]]->id); });
   progress.finish();
 
   if (options.shard) {

@@ -1,5 +1,5 @@
 #pragma once
-// Runs the plan of an experiment on a pool of threads, resumes finished runs, writes the results
+// Runs the plan of an experiment, each run in its own child process, resumes finished runs, writes the results
 // table; merges the runs of shards that ran elsewhere (docs/experiments.md).
 #include <filesystem>
 #include <optional>
@@ -13,7 +13,7 @@ namespace drape {
 /// How to run an experiment.
 struct ExperimentOptions {
   std::filesystem::path out_dir;
-  int jobs = 0;                ///< worker threads; 0 = hardware concurrency
+  int jobs = 0;                ///< runs at once (child processes); 0 = hardware concurrency
   std::optional<Shard> shard;  ///< run only this slice of the plan
   bool progress = false;       ///< show progress on stderr ...
   bool terminal = false;       ///< ... redrawn in place (a terminal) or one line per finished run
@@ -26,6 +26,7 @@ struct ExperimentTally {
   int ok = 0;
   int unstable = 0;  ///< diverged or failed: a result, not an error
   int errors = 0;    ///< could not run (bad input found late, files, exceptions)
+  int crashed = 0;   ///< the run's process died (signal, abort, out of memory): a bug to report
 };
 
 /// Runs the experiment's plan (or one shard of it) into options.out_dir and writes the table:

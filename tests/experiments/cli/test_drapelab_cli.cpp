@@ -29,7 +29,13 @@ Result drapelab(const std::string& args) {
                         "_stderr.txt");
   const std::string cmd = std::string(DRAPELAB_EXE) + " " + args + " 2> " + err.string() + " > /dev/null";
   const int status = std::system(cmd.c_str());
-  return {WEXITSTATUS(status), read_text(err)};
+  // A child killed by a signal (a sanitizer's abort) has no exit status: report it as the
+  // shell would, 128 + signal, never as 0.
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  Result r{code, read_text(err)};
+  EXPECT_EQ(r.err.find("Sanitizer"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("runtime error:"), std::string::npos) << r.err;
+  return r;
 }
 
 fs::path write_scene(const std::string& name, const nlohmann::json& scene) {
@@ -169,7 +175,10 @@ TEST(DrapelabRun, CombinationRunsUnderAnImplicitIntegrator) {
 TEST(Readme, TestCommandIsWhatCiRuns) {
   const std::string readme = read_text(fs::path(DRAPE_SOURCE_DIR) / "README.md");
   const std::string ci = read_text(fs::path(DRAPE_SOURCE_DIR) / ".ci" / "run");
-  const std::string command = ci.substr(ci.rfind("./install_dependencies.sh"));
+  // Its first command line; the sanitizer and fuzzing steps follow it (docs/fuzzing.md).
+  const std::size_t start = ci.find("./install_dependencies.sh");
+  ASSERT_NE(start, std::string::npos);
+  const std::string command = ci.substr(start, ci.find('\n', start) - start);
   EXPECT_NE(readme.find(command), std::string::npos) << command;
 }
 

@@ -1,6 +1,7 @@
 // Experiment files, plans, run ids, resume, shards and merge (docs/experiments.md).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -231,6 +232,46 @@ TEST(ExperimentRun, WritesTablesResumesAndMergesShardsToTheSameResults) {
   EXPECT_EQ(drape::merge_results(merged, {shard_dirs[0]}).size(), 4u);  // two shards missing
   EXPECT_TRUE(drape::merge_results(merged, shard_dirs).empty());
   EXPECT_EQ(without_wall_time(read_json(merged / "results.json")), without_wall_time(whole));
+}
+
+// A run that segfaults or aborts ends its own child process only (docs/experiments.md,
+// "Isolation"): the table has a row for every run, and resume retries the crashed one.
+TEST(ExperimentRun, CrashedRunsAreRecordedAndRetriedOnResume) {
+  const fs::path dir = temp_dir("crash");
+  write_scene(dir);
+  const Experiment experiment = parse(two_by_three(), dir);
+  const std::vector<drape::RunSpec> plan = drape::expand_runs(experiment);
+  drape::ExperimentOptions options;
+  options.out_dir = dir / "out";
+  options.jobs = 2;
+  auto run_with_crash = [&](const std::string& request) {
+    ::setenv("DRAPELAB_TEST_CRASH", request.c_str(), 1);
+    const drape::ExperimentTally t = drape::run_experiment(experiment, options);
+    ::unsetenv("DRAPELAB_TEST_CRASH");
+    return t;
+  };
+  auto row = [&](std::size_t k) { return read_json(options.out_dir / "results.json")["runs"][k]; };
+
+  drape::ExperimentTally t = run_with_crash("segv:" + plan[1].id);
+  EXPECT_EQ(t.crashed, 1);
+  EXPECT_EQ(t.ok + t.unstable, 5);
+  ASSERT_EQ(read_json(options.out_dir / "results.json")["runs"].size(), 6u);
+  EXPECT_EQ(row(1)["status"], "crashed");
+  EXPECT_EQ(row(1)["reason"], "signal 11 (SIGSEGV)");
+  EXPECT_EQ(row(1)["id"], plan[1].id);
+  EXPECT_EQ(row(0)["status"], "ok");
+  EXPECT_EQ(read_json(options.out_dir / "runs" / plan[1].id / "result.json")["status"], "crashed");
+
+  t = run_with_crash("abort:" + plan[1].id);  // resume retries the crashed run, only it
+  EXPECT_EQ(t.skipped, 5);
+  EXPECT_EQ(t.crashed, 1);
+  EXPECT_EQ(row(1)["reason"], "signal 6 (SIGABRT)");
+
+  t = drape::run_experiment(experiment, options);  // the cause gone, it finishes
+  EXPECT_EQ(t.skipped, 5);
+  EXPECT_EQ(t.crashed, 0);
+  EXPECT_EQ(row(1)["status"], "ok");
+  EXPECT_EQ(row(1)["steps"], row(0)["steps"]);
 }
 
 TEST(ExperimentRun, BisectionBracketsTheLargestStableStep) {
