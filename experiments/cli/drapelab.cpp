@@ -8,6 +8,7 @@
 #include "core/input/recording.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/cli/experiment_cli.hpp"
+#include "experiments/cli/fabrics_command.hpp"
 #include "experiments/cli/run_stats.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "integrators/interface/registry.hpp"
@@ -61,6 +62,9 @@ int main(int argc, char** argv) {
   run->add_flag("--quiet,-q", quiet, "print nothing on success (the stats block is summary.json)");
 
   app.add_subcommand("integrators", "list integrators and ARKODE tables with their orders");
+  bool fabrics_json = false;
+  auto* fabrics = app.add_subcommand("fabrics", "list fabric presets and their published sources");
+  fabrics->add_flag("--json", fabrics_json, "print a JSON list");
 
   std::string convert_in, convert_out;
   auto* convert = app.add_subcommand(
@@ -79,6 +83,7 @@ int main(int argc, char** argv) {
 
   try {
     if (run->parsed()) return run_command(scene_file, out_dir, overrides, quiet);
+    if (fabrics->parsed()) return drape::list_fabrics(fabrics_json);
     if (convert->parsed()) {
       drape::convert_recording(convert_in, convert_out);
       return drape::exit_ok;
