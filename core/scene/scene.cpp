@@ -116,6 +116,9 @@ ManipulationParams read_manipulation(JsonReader in, const ClothParams& cloth) {
   }
   m.attach_iterations = in.integer("attach_iterations", m.attach_iterations);
   if (m.attach_iterations < 0) throw in.error("attach_iterations", "must not be negative");
+  m.hold_ramp = in.non_negative("hold_ramp", in.number("hold_ramp", m.hold_ramp));
+  m.attach_at_contact_distance =
+      in.boolean("attach_at_contact_distance", m.attach_at_contact_distance);
   m.map_top = in.number("map_top", m.map_top);
   m.map_direction = in.integer("map_direction", m.map_direction);
   if (m.map_direction != 1 && m.map_direction != -1)
