@@ -127,6 +127,20 @@ ManipulationParams read_manipulation(JsonReader in, const ClothParams& cloth) {
   return m;
 }
 
+Perturbation read_perturbation(JsonReader in) {
+  Perturbation p;
+  p.position = in.non_negative("position", in.number("position", 0.0));
+  const int seed = in.integer("seed", 0);
+  if (seed < 0) throw in.error("seed", "must not be negative");
+  p.seed = static_cast<std::uint64_t>(seed);
+  const std::string distribution = in.string("distribution", "uniform");
+  if (distribution != "uniform" && distribution != "gaussian")
+    throw in.error("distribution", "expected \"uniform\" or \"gaussian\"");
+  p.gaussian = distribution == "gaussian";
+  in.finish();
+  return p;
+}
+
 OutputOptions read_output(JsonReader in) {
   OutputOptions o;
   o.energy_interval =
@@ -190,6 +204,7 @@ Scene parse_scene(const nlohmann::json& source, const std::string& file,
   if (in.has("manipulation"))
     s.manipulation = read_manipulation(in.object("manipulation"), s.cloth);
   if (in.has("output")) s.output = read_output(in.object("output"));
+  if (in.has("perturbation")) s.perturbation = read_perturbation(in.object("perturbation"));
   in.finish();
   return s;
 }
