@@ -2,6 +2,7 @@
 
 #include <limits>
 
+#include "core/manipulations/hold_ramp.hpp"
 #include "core/manipulations/mapping.hpp"
 
 namespace drape {
@@ -199,8 +200,11 @@ void Manipulator::attach(double t, const std::string& key, detail::StateEdit& st
     m_system.constraints().release(i);
     Eigen::VectorXd& y = state.edit();
     const Eigen::Index n3 = 3 * m_system.num_particles();
-    // The particle starts from rest on the object particle; collision pushes it out.
-    y.segment<3>(3 * i) = dummy->position(o);
+    // The particle starts from rest on the object particle; collision pushes it out. With
+    // attach_at_contact_distance it starts where collision would leave it (docs/manipulations.md).
+    const double lift =
+        m_params.attach_at_contact_distance ? m_system.params().collision.threshold : 0.0;
+    y.segment<3>(3 * i) = dummy->position(o) + lift * dummy->normal(o);
     y.segment<3>(n3 + 3 * i).setZero();
     add_event(t, "attach", key, &h, i, o);
     h.held = -1;
@@ -268,6 +272,14 @@ void Manipulator::map(double t, const std::string& key, detail::StateEdit& state
   changed = true;
 }
 
+std::shared_ptr<const Trajectory> Manipulator::hold_trajectory(double t, Hand hand,
+                                                                const Vec3& x,
+                                                                const Vec3& v) const {
+  auto on_hand = std::make_shared<HandTrajectory>(*m_track, hand, x);
+  if (m_params.hold_ramp <= 0.0) return on_hand;  // the paper's snap
+  return std::make_shared<RampedTrajectory>(std::move(on_hand), x, v, t, m_params.hold_ramp);
+}
+
 void Manipulator::update_holds(double t, detail::StateEdit& state, bool& changed) {
   ConstraintSet& constraints = m_system.constraints();
   for (HandState& h : m_hands) {
@@ -282,7 +294,7 @@ void Manipulator::update_holds(double t, detail::StateEdit& state, bool& changed
         add_event(t, "hold_paused", "", &h, h.held);
         changed = true;
       } else if (motion && h.paused) {
-        constraints.fix(h.held, std::make_shared<HandTrajectory>(*m_track, h.hand, x));
+        constraints.fix(h.held, hold_trajectory(t, h.hand, x, Vec3::Zero()));
         h.paused = false;
         add_event(t, "hold_resumed", "", &h, h.held);
         changed = true;
@@ -301,8 +313,9 @@ void Manipulator::update_holds(double t, detail::StateEdit& state, bool& changed
     }
     if (distance >= m_params.hold_threshold) continue;
     h.held = candidate;
-    constraints.fix(candidate, std::make_shared<HandTrajectory>(*m_track, h.hand,
-                                                                 state.current().segment<3>(3 * candidate)));
+    const Eigen::Index n3 = 3 * m_system.num_particles();
+    constraints.fix(candidate, hold_trajectory(t, h.hand, state.current().segment<3>(3 * candidate),
+                                               state.current().segment<3>(n3 + 3 * candidate)));
     add_event(t, "hold", "", &h, candidate, -1, distance);
     changed = true;
   }

@@ -78,6 +78,9 @@ class Manipulator {
   void add_event(double t, const std::string& type, const std::string& key, const HandState* hand,
                  int particle, int object_particle = -1, double value = 0.0);
   void ignore(double t, const std::string& key, const std::string& reason);
+  /// The held particle's trajectory: the hand, reached through a ramp when hold_ramp > 0.
+  std::shared_ptr<const Trajectory> hold_trajectory(double t, Hand hand, const Vec3& x,
+                                                    const Vec3& v) const;
   int nearest_free_particle(const Vec3& p, const Eigen::VectorXd& y, double& distance) const;
 
   ClothSystem& m_system;

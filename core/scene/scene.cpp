@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/fabrics/fabric.hpp"
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
 
@@ -18,6 +19,22 @@ Vec3 unit_direction(JsonReader& in, const std::string& key, const Vec3& fallback
   return dir;
 }
 
+const Fabric& read_fabric(JsonReader& in) {
+  const std::string name = in.string("fabric");
+  const Fabric* fabric = find_fabric(name);
+  if (!fabric)
+    throw in.error("fabric", "unknown fabric '" + name + "' (known: " + fabric_names() + ")");
+  return *fabric;
+}
+
+// The scene as run: a preset's derived values written into summary.json's scene.
+void fill_fabric_values(nlohmann::json& cloth, const ClothParams& c) {
+  cloth["particle_mass"] = c.particle_mass;
+  cloth["k_structural"] = c.k_structural;
+  cloth["k_shear"] = c.k_shear;
+  cloth["k_bending"] = c.k_bending;
+}
+
 ClothParams read_cloth(JsonReader in) {
   ClothParams c;
   c.rows = in.integer("rows");
@@ -31,10 +48,15 @@ ClothParams read_cloth(JsonReader in) {
   c.row_dir = unit_direction(in, "row_dir", c.row_dir);
   if (std::abs(c.col_dir.dot(c.row_dir)) > direction_tolerance)
     throw in.error("row_dir", "must be orthogonal to cloth.col_dir");
-  c.particle_mass = in.positive("particle_mass", in.number("particle_mass"));
-  c.k_structural = in.positive("k_structural", in.number("k_structural"));
-  c.k_shear = in.non_negative("k_shear", in.number("k_shear", c.k_structural));
-  c.k_bending = in.non_negative("k_bending", in.number("k_bending", 0.0));
+  // A fabric preset supplies the mass and stiffness defaults; explicit keys still win.
+  const bool preset = in.has("fabric");
+  const FabricSprings d = preset ? fabric_springs(read_fabric(in), c.spacing) : FabricSprings{};
+  c.particle_mass = in.positive("particle_mass", preset ? in.number("particle_mass", d.particle_mass)
+                                                        : in.number("particle_mass"));
+  c.k_structural = in.positive("k_structural", preset ? in.number("k_structural", d.k_structural)
+                                                      : in.number("k_structural"));
+  c.k_shear = in.non_negative("k_shear", in.number("k_shear", preset ? d.k_shear : c.k_structural));
+  c.k_bending = in.non_negative("k_bending", in.number("k_bending", d.k_bending));
   c.damping_spring = in.non_negative("damping_spring", in.number("damping_spring", 0.0));
   c.damping_air = in.non_negative("damping_air", in.number("damping_air", 0.0));
   in.finish();
@@ -94,12 +116,29 @@ ManipulationParams read_manipulation(JsonReader in, const ClothParams& cloth) {
   }
   m.attach_iterations = in.integer("attach_iterations", m.attach_iterations);
   if (m.attach_iterations < 0) throw in.error("attach_iterations", "must not be negative");
+  m.hold_ramp = in.non_negative("hold_ramp", in.number("hold_ramp", m.hold_ramp));
+  m.attach_at_contact_distance =
+      in.boolean("attach_at_contact_distance", m.attach_at_contact_distance);
   m.map_top = in.number("map_top", m.map_top);
   m.map_direction = in.integer("map_direction", m.map_direction);
   if (m.map_direction != 1 && m.map_direction != -1)
     throw in.error("map_direction", "must be +1 or -1");
   in.finish();
   return m;
+}
+
+Perturbation read_perturbation(JsonReader in) {
+  Perturbation p;
+  p.position = in.non_negative("position", in.number("position", 0.0));
+  const int seed = in.integer("seed", 0);
+  if (seed < 0) throw in.error("seed", "must not be negative");
+  p.seed = static_cast<std::uint64_t>(seed);
+  const std::string distribution = in.string("distribution", "uniform");
+  if (distribution != "uniform" && distribution != "gaussian")
+    throw in.error("distribution", "expected \"uniform\" or \"gaussian\"");
+  p.gaussian = distribution == "gaussian";
+  in.finish();
+  return p;
 }
 
 OutputOptions read_output(JsonReader in) {
@@ -148,6 +187,7 @@ Scene parse_scene(const nlohmann::json& source, const std::string& file,
   s.source = source;
   s.description = in.string("description", "");
   s.cloth = read_cloth(in.object("cloth"));
+  if (s.source["cloth"].contains("fabric")) fill_fabric_values(s.source["cloth"], s.cloth);
   s.pins = read_pins(in, s.cloth);
   s.forces.gravity = in.vec3("gravity", s.forces.gravity);
   s.dummy = in.has("dummy") ? in.raw("dummy") : nlohmann::json{{"builtin", "dress-form"}};
@@ -164,6 +204,7 @@ Scene parse_scene(const nlohmann::json& source, const std::string& file,
   if (in.has("manipulation"))
     s.manipulation = read_manipulation(in.object("manipulation"), s.cloth);
   if (in.has("output")) s.output = read_output(in.object("output"));
+  if (in.has("perturbation")) s.perturbation = read_perturbation(in.object("perturbation"));
   in.finish();
   return s;
 }

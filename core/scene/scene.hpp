@@ -2,6 +2,7 @@
 // A scene file (docs/model.md section 9): the problem data of one run. Solver options (`integrator`) and the hand
 // input (`input`) are kept as validated JSON here and read by their own layers, so that core
 // knows nothing of integrators.
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -21,6 +22,13 @@ struct OutputOptions {
   double vtk_interval = 0.0;      ///< time between VTK frames [s]; 0 = no frames
 };
 
+/// A seeded perturbation of the initial positions, for ensembles (docs/scene.md; off by default).
+struct Perturbation {
+  double position = 0.0;   ///< amplitude as a fraction of cloth.spacing; 0: none
+  std::uint64_t seed = 0;  ///< the same seed gives the same perturbation
+  bool gaussian = false;   ///< false: uniform in [-a, a] per coordinate; true: normal, std a
+};
+
 /// One scene: cloth, pins, forces, object, duration, manipulation, input and output.
 struct Scene {
   std::string file;                ///< the scene file (for messages)
@@ -35,6 +43,7 @@ struct Scene {
   double duration = 0.0;
   ManipulationParams manipulation;
   OutputOptions output;
+  Perturbation perturbation;
   nlohmann::json source;  ///< the whole scene as read, overrides applied
 };
 

@@ -10,6 +10,7 @@
 #include "experiments/cli/convert_command.hpp"
 #include "experiments/cli/did_you_mean.hpp"
 #include "experiments/cli/experiment_cli.hpp"
+#include "experiments/cli/fabrics_command.hpp"
 #include "experiments/cli/run_stats.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_scene.hpp"
@@ -75,6 +76,10 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("integrators", "list integrators and ARKODE tables with their orders")
       ->footer("Example:\n  drapelab integrators");
+  bool fabrics_json = false;
+  auto* fabrics = app.add_subcommand("fabrics", "list fabric presets and their published sources");
+  fabrics->add_flag("--json", fabrics_json, "print a JSON list");
+  fabrics->footer("Examples:\n  drapelab fabrics\n  drapelab fabrics --json");
 
   std::string convert_in, convert_out;
   auto* convert = app.add_subcommand(
@@ -104,6 +109,7 @@ int main(int argc, char** argv) {
 
   try {
     if (run->parsed()) return run_command(scene_file, out_dir, overrides, quiet);
+    if (fabrics->parsed()) return drape::list_fabrics(fabrics_json);
     if (convert->parsed()) return drape::convert_command(convert_in, convert_out);
     if (const int code = experiment_commands.dispatch(); code >= 0) return code;
     return list_integrators();

@@ -1,6 +1,7 @@
 #include "experiments/run/scene_simulation.hpp"
 
 #include "core/dummy/dummy_sources.hpp"
+#include "experiments/run/initial_perturbation.hpp"
 #include "integrators/interface/registry.hpp"
 
 namespace drape {
@@ -26,8 +27,11 @@ SceneSimulation::SceneSimulation(const Scene& scene)
   settings.max_steps = m_options.max_steps;
   settings.adaptive = m_options.adaptive;
   settings.dt = m_options.dt;
+  Eigen::VectorXd initial = m_system->initial_state(0.0);
+  perturb_initial_positions(scene.perturbation, scene.cloth.spacing, m_system->constraints(),
+                            initial);
   m_simulation = std::make_unique<Simulation>(*m_system, *m_manipulator, *m_integrator, settings,
-                                              m_system->initial_state(0.0));
+                                              std::move(initial));
 }
 
 }  // namespace drape

@@ -11,6 +11,7 @@
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
+#include "experiments/sweep/ensemble_summary.hpp"
 
 namespace drape {
 
@@ -68,6 +69,22 @@ void check_disjoint(const JsonReader& in, const Experiment& e) {
       for (const auto& [key, value] : c)
         if (key == p) throw in.error("bisect.parameter", "'" + p + "' is also set by a case");
   }
+}
+
+// An ensemble perturbs every repeat's initial positions (docs/experiments.md, "Ensembles"): by
+// 1e-3 spacing unless the experiment sets perturbation.position itself. The seed is the repeat's.
+void add_ensemble_defaults(const JsonReader& in, Experiment& e) {
+  auto names = [](const std::vector<Override>& list, const std::string& key) {
+    return std::any_of(list.begin(), list.end(), [&](const Override& o) { return o.first == key; });
+  };
+  bool position = names(e.set, "perturbation.position");
+  for (const auto& [key, values] : e.sweep) position = position || key == "perturbation.position";
+  for (const auto& c : e.cases) position = position || names(c, "perturbation.position");
+  if (!position) e.set.emplace_back("perturbation.position", 1e-3);
+  bool seeded = names(e.set, repeat_parameter);
+  for (const auto& [key, values] : e.sweep) seeded = seeded || key == repeat_parameter;
+  for (const auto& c : e.cases) seeded = seeded || names(c, repeat_parameter);
+  if (seeded) throw in.error("repeats", "the repeats set perturbation.seed: do not set it too");
 }
 
 std::uint64_t fnv1a(const std::string& text) {
@@ -217,6 +234,11 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
       e.metrics.push_back(metrics[k].get<std::string>());
     }
   }
+  if (in.has("repeats")) {
+    e.repeats = in.integer("repeats");
+    if (e.repeats < 1) throw in.error("repeats", "must be at least 1");
+    add_ensemble_defaults(in, e);
+  }
   in.finish();
   check_disjoint(in, e);
   return e;
@@ -225,6 +247,32 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
 Experiment load_experiment(const std::string& file) {
   return parse_experiment(read_json_file(file), file, std::filesystem::path(file).parent_path());
 }
+
+namespace {
+
+// Adds a run and, when the experiment has one, its reference run.
+void plan_run(const Experiment& e, RunSpec run, std::vector<RunSpec>& plan,
+              std::set<std::string>& ids, std::vector<RunSpec>& references) {
+  if (!e.reference.empty()) {
+    // The reference shares the scene and every non-integrator value, solved with the
+    // reference's method, so that the difference is the integrator's error alone.
+    RunSpec ref;
+    ref.scene = run.scene;
+    ref.scene_path = run.scene_path;
+    ref.is_reference = true;
+    for (const auto& p : run.parameters)
+      if (p.first.rfind("integrator.", 0) != 0) ref.parameters.push_back(p);
+    ref.parameters.insert(ref.parameters.end(), e.reference.begin(), e.reference.end());
+    ref.overrides = e.set;
+    ref.overrides.insert(ref.overrides.end(), ref.parameters.begin(), ref.parameters.end());
+    ref.id = run_id(ref);
+    run.reference = ref.id;
+    references.push_back(std::move(ref));
+  }
+  append_run(plan, ids, std::move(run));
+}
+
+}  // namespace
 
 std::vector<RunSpec> expand_runs(const Experiment& e) {
   // Every combination of the swept values, the first key varying slowest.
@@ -255,23 +303,14 @@ std::vector<RunSpec> expand_runs(const Experiment& e) {
         run.overrides = e.set;
         run.overrides.insert(run.overrides.end(), run.parameters.begin(), run.parameters.end());
         run.bisect = e.bisect;
-        if (!e.reference.empty()) {
-          // The reference shares the scene and every non-integrator value, solved with the
-          // reference's method, so that the difference is the integrator's error alone.
-          RunSpec ref;
-          ref.scene = run.scene;
-          ref.scene_path = run.scene_path;
-          ref.is_reference = true;
-          for (const auto& p : run.parameters)
-            if (p.first.rfind("integrator.", 0) != 0) ref.parameters.push_back(p);
-          ref.parameters.insert(ref.parameters.end(), e.reference.begin(), e.reference.end());
-          ref.overrides = e.set;
-          ref.overrides.insert(ref.overrides.end(), ref.parameters.begin(), ref.parameters.end());
-          ref.id = run_id(ref);
-          run.reference = ref.id;
-          references.push_back(std::move(ref));
+        if (e.repeats == 0) plan_run(e, std::move(run), plan, ids, references);
+        // An ensemble: the repeats of one group differ only in their perturbation seed.
+        for (int r = 1; r <= e.repeats; ++r) {
+          RunSpec repeat = run;
+          repeat.parameters.emplace_back(repeat_parameter, r);
+          repeat.overrides.emplace_back(repeat_parameter, r);
+          plan_run(e, std::move(repeat), plan, ids, references);
         }
-        append_run(plan, ids, std::move(run));
       }
   for (auto& ref : references) append_run(plan, ids, std::move(ref));
   return plan;

@@ -34,6 +34,7 @@ struct Experiment {
   std::vector<std::vector<Override>> cases;      ///< explicit combinations, times the sweep
   std::vector<Override> reference;               ///< overrides that make a run's reference run
   std::optional<BisectSpec> bisect;
+  int repeats = 0;  ///< 0: no ensemble; N: every run N times with perturbation.seed = 1..N
   std::vector<std::string> metrics;              ///< what the report computes and plots
   nlohmann::json source;                         ///< the file as read
 };

@@ -14,6 +14,7 @@
 #include "core/scene/scene.hpp"
 #include "experiments/sweep/child_runs.hpp"
 #include "experiments/sweep/progress_reporter.hpp"
+#include "experiments/sweep/ensemble_summary.hpp"
 #include "experiments/sweep/results_table.hpp"
 #include "experiments/sweep/deliberate_crash.hpp"
 #include "experiments/run/run_scene.hpp"
@@ -192,6 +193,10 @@ void write_table(const fs::path& stem, const nlohmann::json& header,
                         {"columns", columns},           {"runs", rows}};
   write_json_atomic(stem.string() + ".json", doc);
   write_results_csv(stem.string() + ".csv", columns, rows);
+  // An ensemble (`repeats`) also gets its statistics per group beside results.csv.
+  if (shard.empty() &&
+      std::find(parameters.begin(), parameters.end(), repeat_parameter) != parameters.end())
+    write_ensemble_summary(stem.parent_path() / "summary.csv", parameters, rows);
 }
 
 nlohmann::json read_header(const fs::path& dir) {

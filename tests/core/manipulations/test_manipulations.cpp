@@ -249,5 +249,63 @@ TEST(Map, FixesTheTopRowAndColumnZeroOnTheirMappedPositions) {
   }
 }
 
+// The remedies (docs/manipulations.md): a hand 4 cm above particle 14 of a flat cloth at rest
+// holds it at t = 0; returns the energy jump of that hold and checks where the particle goes.
+double hold_energy_jump(double hold_ramp) {
+  auto s = horizontal_cloth();
+  const Vec3 x14 = s->cloth().rest_positions.segment<3>(3 * 14);
+  const Vec3 hand = x14 + Vec3(0.0, 0.04, 0.0);
+  const HandTrack track = track_of({frame(0.0, hand), frame(1.0, hand)});
+  ManipulationParams params;
+  params.hold_ramp = hold_ramp;
+  Manipulator m(*s, &track, params);
+  const Eigen::VectorXd before = s->initial_state(0.0);
+  const auto after = m.update(0.0, before);
+  EXPECT_TRUE(after.has_value());
+  if (!after) return 0.0;
+  const Eigen::Index n3 = 3 * s->num_particles();
+  const double jump = s->energy(after->head(n3), after->tail(n3)).total() -
+                      s->energy(before.head(n3), before.tail(n3)).total();
+  const Vec3 x_hold = after->segment<3>(3 * 14);
+  EXPECT_LT((x_hold - (hold_ramp > 0 ? x14 : hand)).norm(), 1e-14) << hold_ramp;
+  if (hold_ramp > 0) {
+    const Trajectory* p = s->constraints().trajectory(14);
+    EXPECT_LT((p->position(hold_ramp) - hand).norm(), 1e-15) << "on the hand at hold_ramp";
+    EXPECT_LT((p->position(0.5 * hold_ramp) - 0.5 * (x14 + hand)).norm(), 1e-14);
+  }
+  return jump;
+}
+
+TEST(Hold, RampRemovesThePositionJumpAndTheEnergyItInjects) {
+  const double snap = hold_energy_jump(0.0);
+  const double ramped = hold_energy_jump(0.1);
+  // The snap stretches the four 2 cm structural springs (k = 20 N/m) to sqrt(0.02^2 + 0.04^2)
+  // and lifts the particle 4 cm: more than 4 * 20 * (0.02 sqrt 5 - 0.02)^2 / 2 + m g 0.04.
+  EXPECT_GT(snap, 4 * 20 * std::pow(0.02 * std::sqrt(5.0) - 0.02, 2) / 2 + 0.001 * 9.81 * 0.04);
+  EXPECT_NEAR(ramped, 0.0, 1e-15) << "the ramp starts where the particle is, at its velocity";
+}
+
+TEST(Attach, AtContactDistanceStartsDeltaAlongTheNormal) {
+  auto cylinder = std::make_shared<const Dummy>(cylinder_sections(0.1, 0.0, 0.0, 1.2, 0.6, 31, 32));
+  ClothParams p = testing::small_cloth(6, 6);
+  p.origin = Vec3(-0.06, 1.1, 0.11);
+  ForceParams forces;
+  forces.collision = {0.01, 200.0};
+  ClothSystem s(build_cloth(p), cylinder, forces);
+  const Vec3 grab = s.cloth().rest_positions.segment<3>(3 * 33);
+  const HandTrack track = track_of({frame(0.0, grab), frame(0.01, grab, {"a"}), frame(1.0, grab)});
+  ManipulationParams params;
+  params.attach_at_contact_distance = true;
+  Manipulator m(s, &track, params);
+  ASSERT_TRUE(m.update(0.0, s.initial_state(0.0)).has_value());  // the hold
+  const auto y = m.update(0.01, s.initial_state(0.0));
+  ASSERT_TRUE(y.has_value());
+  ASSERT_EQ(m.events().back().type, "attach") << describe(m, s.cloth());
+  const int o = m.events().back().object_particle;
+  const Vec3 x = y->segment<3>(3 * 33);
+  EXPECT_LT((x - (cylinder->position(o) + 0.01 * cylinder->normal(o))).norm(), 1e-15);
+  EXPECT_NEAR((x - cylinder->position(o)).norm(), 0.01, 1e-15) << "delta from p_o";
+}
+
 }  // namespace
 }  // namespace drape

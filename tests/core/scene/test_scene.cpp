@@ -110,5 +110,37 @@ TEST(Scene, OverridesCreatePathsAndParseJsonElseString) {
   EXPECT_THROW(apply_override(scene, "duration.x=1"), InputError);
 }
 
+TEST(Scene, FabricPresetDerivesMassAndSpringsAndFillsTheSceneAsRun) {
+  nlohmann::json scene = valid_scene();
+  scene["cloth"].erase("particle_mass");
+  scene["cloth"].erase("k_structural");
+  scene["cloth"]["fabric"] = "gray-interlock";
+  const Scene s = parse_scene(scene, "scene.json", ".");
+  // docs/fabrics.md at h = 0.02: rho_A h^2, C11 - G, G, 16 B / h^2.
+  EXPECT_NEAR(s.cloth.particle_mass, 0.187 * 4e-4, 1e-15);
+  EXPECT_NEAR(s.cloth.k_structural, 25.5354775 - 18.430151, 1e-9);
+  EXPECT_NEAR(s.cloth.k_shear, 18.430151, 1e-9);
+  EXPECT_NEAR(s.cloth.k_bending, 16.0 * 20.736428667e-6 / 4e-4, 1e-8);
+  EXPECT_EQ(s.source["cloth"]["fabric"], "gray-interlock");
+  EXPECT_EQ(s.source["cloth"]["k_structural"].get<double>(), s.cloth.k_structural);
+  EXPECT_EQ(s.source["cloth"]["k_bending"].get<double>(), s.cloth.k_bending);
+}
+
+TEST(Scene, ExplicitClothKeysOverrideTheFabric) {
+  nlohmann::json scene = with("cloth.fabric=\"11oz-black-denim\"");
+  scene["cloth"]["k_bending"] = 0.5;
+  const Scene s = parse_scene(scene, "scene.json", ".");
+  EXPECT_EQ(s.cloth.particle_mass, 0.001);
+  EXPECT_EQ(s.cloth.k_structural, 50.0);
+  EXPECT_EQ(s.cloth.k_bending, 0.5);
+  EXPECT_NEAR(s.cloth.k_shear, 26.693592, 1e-9) << "only the keys not given come from the fabric";
+  EXPECT_EQ(s.source["cloth"]["k_structural"], 50.0);
+}
+
+TEST(Scene, UnknownFabricIsNamed) {
+  EXPECT_EQ(error_for(with("cloth.fabric=\"velvet\"")).rfind("scene.json: cloth.fabric: unknown fabric 'velvet' (known: paper, ", 0), 0u)
+      << error_for(with("cloth.fabric=\"velvet\""));
+}
+
 }  // namespace
 }  // namespace drape

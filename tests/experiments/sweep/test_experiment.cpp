@@ -1,6 +1,7 @@
 // Experiment files, plans, run ids, resume, shards and merge (docs/experiments.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -296,6 +297,44 @@ TEST(ExperimentRun, BisectionBracketsTheLargestStableStep) {
   // Leap-frog on a spring of k/m = 2e4 /s^2 with neighbours: stable below 2/omega_max.
   EXPECT_GT(stable, 1e-3);
   EXPECT_LT(unstable, 2.0 / std::sqrt(20.0 / 0.001));
+}
+
+TEST(ExperimentRun, RepeatsAreSeededReproducibleAndSummarised) {
+  const fs::path dir = temp_dir("repeats");
+  write_scene(dir);
+  const json source = json::parse(R"({
+    "name": "ensemble", "scenes": ["cloth.json"], "repeats": 3,
+    "sweep": {"integrator.dt": [0.001, 0.002]}})");
+  const Experiment experiment = parse(source, dir);
+  const auto plan = drape::expand_runs(experiment);
+  ASSERT_EQ(plan.size(), 6u);
+  EXPECT_EQ(plan[0].parameters.back(), drape::Override("perturbation.seed", 1));
+  EXPECT_EQ(plan[2].parameters.back(), drape::Override("perturbation.seed", 3));
+  EXPECT_NE(std::find(plan[0].overrides.begin(), plan[0].overrides.end(),
+                      drape::Override("perturbation.position", 1e-3)),
+            plan[0].overrides.end())
+      << "repeats perturb by 1e-3 spacing unless the experiment says otherwise";
+  drape::ExperimentOptions options;
+  options.out_dir = dir / "a";
+  options.jobs = 2;
+  EXPECT_EQ(drape::run_experiment(experiment, options).ok, 6);
+  const json a = read_json(options.out_dir / "results.json");
+  EXPECT_NE(a["runs"][0]["energy_final"], a["runs"][1]["energy_final"]) << "seeds differ";
+  options.out_dir = dir / "b";
+  drape::run_experiment(experiment, options);
+  const json b = read_json(options.out_dir / "results.json");
+  for (std::size_t k = 0; k < 6; ++k)
+    EXPECT_EQ(a["runs"][k]["energy_final"], b["runs"][k]["energy_final"]) << "same seed, same run";
+  std::ifstream summary(dir / "a" / "summary.csv");
+  std::string header, line;
+  ASSERT_TRUE(std::getline(summary, header));
+  EXPECT_EQ(header.rfind("scene,is_reference,integrator.dt,n,", 0), 0u) << header;
+  EXPECT_NE(header.find("energy_final_ci95"), std::string::npos);
+  int groups = 0;
+  while (std::getline(summary, line)) groups += line.find(",3,") != std::string::npos;
+  EXPECT_EQ(groups, 2);
+  EXPECT_EQ(error_field(json::parse(R"({"name": "e", "scenes": ["cloth.json"], "repeats": 0})"), dir),
+            "repeats");
 }
 
 }  // namespace
