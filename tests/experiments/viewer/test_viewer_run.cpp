@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "../../test_support.hpp"
+#include "tests/support/test_support.hpp"
 #include "experiments/viewer/viewer_run.hpp"
 #include "viewer_test_files.hpp"
 
