@@ -1,5 +1,7 @@
 #include "integrators/arkode/arkode_stepper.hpp"
 
+#include "integrators/arkode/butcher_tableau.hpp"
+
 #include <sunlinsol/sunlinsol_spfgmr.h>
 #include <sunlinsol/sunlinsol_spgmr.h>
 
@@ -36,6 +38,9 @@ ArkodeStepper::ArkodeStepper(ClothSystem& system, ArkodeKind kind,
       m_kind(kind),
       m_options(options),
       m_table(*[&] {
+        // An inline table has no ARKODE name: create() builds it from the options.
+        static const ArkodeTable user{"user", ArkodeKind::diagonally_implicit, "", ""};
+        if (!options.user_table.is_null()) return &user;
         const ArkodeTable* table = find_arkode_table(
             options.table.empty() ? default_arkode_table(kind) : options.table, kind);
         if (!table) throw std::logic_error("ArkodeStepper: unvalidated table " + options.table);
@@ -44,6 +49,8 @@ ArkodeStepper::ArkodeStepper(ClothSystem& system, ArkodeKind kind,
   if (kind != ArkodeKind::explicit_rk)
     m_reduced.emplace(system, *reduced_solve_named(linear_solver_of(options)), implicit_split(),
                       linear_tolerance_of(options), options.max_linear_iters);
+  if (m_reduced && uses_line_search(options))
+    m_line_search.emplace(system, implicit_split(), *m_reduced);
   // The N_Vector views m_y for the whole life of the stepper: m_y keeps this size and buffer.
   m_y = Eigen::VectorXd::Zero(system.size());
   m_y_vector = detail::wrap_vector(m_y, m_context);
@@ -96,7 +103,11 @@ void ArkodeStepper::create(double t) {
   }
   check_sundials(ARKStepSetMaxNumSteps(mem, m_options.max_steps), "ARKStepSetMaxNumSteps");
   const detail::ButcherTableHandle explicit_table = detail::load_explicit_table(m_table);
-  const detail::ButcherTableHandle implicit_table = detail::load_implicit_table(m_table);
+  const detail::ButcherTableHandle implicit_table =
+      m_options.user_table.is_null()
+          ? detail::load_implicit_table(m_table)
+          : detail::create_butcher_table(
+                read_butcher_tableau(m_options.user_table, "options", "integrator.table"));
   const ARKodeButcherTable main = implicit_table ? implicit_table.get() : explicit_table.get();
   check_sundials(ARKStepSetTables(mem, main->q, main->p, implicit_table.get(), explicit_table.get()),
                  "ARKStepSetTables");
@@ -107,6 +118,21 @@ void ArkodeStepper::create(double t) {
 }
 
 void ArkodeStepper::set_up_newton() {
+  void* mem = m_arkode.get();
+  if (m_line_search) {
+    m_nonlinear_solver = std::make_unique<LineSearchNonlinearSolver>(*m_line_search, m_context);
+    check_sundials(ARKStepSetNonlinearSolver(mem, m_nonlinear_solver->get()),
+                   "ARKStepSetNonlinearSolver");
+  } else {
+    set_up_linear_solver();
+  }
+  check_sundials(ARKStepSetMaxNonlinIters(mem, max_newton_iters_of(m_options)),
+                 "ARKStepSetMaxNonlinIters");
+  // f_I at a solved stage follows from the stage equation: one implicit rhs less per stage.
+  check_sundials(ARKStepSetDeduceImplicitRhs(mem, SUNTRUE), "ARKStepSetDeduceImplicitRhs");
+}
+
+void ArkodeStepper::set_up_linear_solver() {
   void* mem = m_arkode.get();
   // CG inside the preconditioner is not a fixed linear operator: flexible GMRES tolerates that;
   // the factorised solve is one, and plain GMRES is enough.
@@ -122,11 +148,6 @@ void ArkodeStepper::set_up_newton() {
   check_linear(ARKStepSetJacTimes(mem, nullptr, jacobian_times), "ARKStepSetJacTimes");
   check_linear(ARKStepSetPreconditioner(mem, preconditioner_setup, preconditioner_solve),
                "ARKStepSetPreconditioner");
-  // ARKODE's default of 3 Newton iterations stops fixed-step runs at the first hard stage.
-  check_sundials(ARKStepSetMaxNonlinIters(mem, m_options.max_newton_iters),
-                 "ARKStepSetMaxNonlinIters");
-  // f_I at a solved stage follows from the stage equation: one implicit rhs less per stage.
-  check_sundials(ARKStepSetDeduceImplicitRhs(mem, SUNTRUE), "ARKStepSetDeduceImplicitRhs");
 }
 
 void ArkodeStepper::restart(double initial_step) {
@@ -238,6 +259,13 @@ ArkodeStepper::ArkodeCounts ArkodeStepper::read_counts() const {
   if (m_kind == ArkodeKind::explicit_rk) return c;
   check_sundials(ARKStepGetNonlinSolvStats(mem, &c.newton_iters, &c.newton_failures),
                  "ARKStepGetNonlinSolvStats");
+  if (m_nonlinear_solver) {
+    // No ARKODE linear solver: the line search's gradients and Hessians are counted here.
+    c.rhs_evals += m_nonlinear_solver->rhs_evals();
+    c.setups = m_nonlinear_solver->setups();
+    c.backtracks = m_nonlinear_solver->backtracks();
+    return c;
+  }
   check_linear(ARKStepGetNumLinIters(mem, &c.linear_iters), "ARKStepGetNumLinIters");
   check_linear(ARKStepGetNumLinConvFails(mem, &c.linear_failures), "ARKStepGetNumLinConvFails");
   check_linear(ARKStepGetNumPrecEvals(mem, &c.setups), "ARKStepGetNumPrecEvals");
@@ -253,6 +281,7 @@ void ArkodeStepper::accumulate_counters() {
   m_counters.linear_iters += now.linear_iters - m_seen.linear_iters;
   m_counters.jacobian_setups += now.setups - m_seen.setups;
   m_counters.error_test_failures += now.error_test_failures - m_seen.error_test_failures;
+  m_counters.line_search_backtracks += now.backtracks - m_seen.backtracks;
   m_counters.convergence_failures += now.newton_failures - m_seen.newton_failures +
                                      now.linear_failures - m_seen.linear_failures;
   m_seen = now;

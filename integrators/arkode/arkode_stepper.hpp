@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "integrators/arkode/arkode_tables.hpp"
+#include "integrators/arkode/line_search_nonlinear_solver.hpp"
 #include "integrators/interface/integrator.hpp"
 #include "integrators/interface/integrator_options.hpp"
 #include "integrators/newton/reduced_newton_solver.hpp"
@@ -17,9 +18,11 @@ namespace drape {
 ///   y_{n+1} = y_n + h sum_i (b^E_i f_E(t_n + c^E_i h, z_i) + b^I_i f_I(t_n + c^I_i h, z_i)).
 /// arkode-erk: f_E = y', no f_I (ARKStep's explicit mode, right for every table, unlike ERKStep
 /// 6.4.1). arkode-dirk: f_I = y', no f_E. arkode-imex: f_I = [v; M^-1 F_springs] (stiff),
-/// f_E = [0; M^-1 (gravity + air damping + collision)]. Implicit stages are solved by Newton's
-/// method with GMRES, the analytic Jacobian-times-vector and the reduced 3N system as the
-/// preconditioner (reduced_newton_solver.hpp). Fixed steps or error-controlled steps.
+/// f_E = [0; M^-1 (gravity + air damping + collision)]. Implicit stages are solved, by default
+/// (`nonlinear_solver` = line-search), as the minimisation of their incremental potential by
+/// Newton's method with a line search (line_search_nonlinear_solver.hpp), or (`newton`) by
+/// ARKODE's Newton method with GMRES, the analytic Jacobian-times-vector and the reduced 3N
+/// system as the preconditioner (reduced_newton_solver.hpp). Fixed or error-controlled steps.
 ///
 /// arkode-dirk fixes the contact set over each step (Collision::pair_contacts): each cloth
 /// particle keeps the contact of the step start (its nearest object particle, or the surface),
@@ -40,11 +43,13 @@ class ArkodeStepper final : public Integrator {
   /// ARKODE's cumulative counters, read after every step to update m_counters.
   struct ArkodeCounts {
     long steps = 0, attempts = 0, rhs_evals = 0, newton_iters = 0, newton_failures = 0,
-         linear_iters = 0, linear_failures = 0, setups = 0, error_test_failures = 0;
+         linear_iters = 0, linear_failures = 0, setups = 0, error_test_failures = 0,
+         backtracks = 0;
   };
 
   void create(double t);
   void set_up_newton();
+  void set_up_linear_solver();
   void restart(double initial_step);
   /// One ARKODE step towards `target`, projected; throws IntegratorFailure.
   void evolve(double target);
@@ -76,6 +81,7 @@ class ArkodeStepper final : public Integrator {
   IntegratorOptions m_options;
   const ArkodeTable& m_table;
   std::optional<ReducedNewtonSolver> m_reduced;  // implicit kinds only
+  std::optional<LineSearchNewton> m_line_search;  // with nonlinear_solver = line-search
   int m_corrections = 0;  // penetrations corrected by postprocess_step during the last step
   std::string m_arkode_message;  // ARKODE's explanation of the last failure
   ArkodeCounts m_seen;    // ARKODE's counters when m_counters was last updated
@@ -84,6 +90,7 @@ class ArkodeStepper final : public Integrator {
   sundials::Context m_context;
   detail::NVectorHandle m_y_vector;  // views Integrator::m_y
   detail::LinearSolverHandle m_linear_solver;
+  std::unique_ptr<LineSearchNonlinearSolver> m_nonlinear_solver;
   detail::ArkodeHandle m_arkode;
 };
 

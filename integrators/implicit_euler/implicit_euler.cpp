@@ -4,12 +4,49 @@ namespace drape {
 
 ImplicitEuler::ImplicitEuler(ClothSystem& system, const IntegratorOptions& options)
     : Integrator(system),
+      m_options(options),
       m_dt(options.dt),
       m_solver(system, *reduced_solve_named(linear_solver_of(options)), ForceSplit::all,
-               linear_tolerance_of(options), options.max_linear_iters) {}
+               linear_tolerance_of(options), options.max_linear_iters) {
+  if (uses_line_search(options)) m_line_search.emplace(system, ForceSplit::all, m_solver);
+}
 
 double ImplicitEuler::step(double t_stop) {
   const double t_next = fixed_step_end(m_dt, m_t, t_stop);
+  if (m_line_search)
+    converged_step(t_next);
+  else
+    linearised_step(t_next);
+  m_system.project(t_next, positions(), velocities());
+  return accept_fixed_step(t_next);
+}
+
+void ImplicitEuler::converged_step(double t_next) {
+  // ARKODE's error weights and its default Newton tolerance (nlscoef 0.1), so that a converged
+  // implicit-euler and a one-stage ARKODE table stop at the same accuracy.
+  constexpr double tolerance = 0.1;
+  m_weights = 1.0 / (m_options.rtol * m_y.array().abs() + m_options.atol);
+  m_increment = m_y;  // the stage's guess: the step's start
+  const long cg_before = m_solver.iterations();
+  const StageSolve result =
+      m_line_search->solve(t_next, t_next - m_t, m_y, m_increment,
+                           StageTolerance{m_weights, tolerance, max_newton_iters_of(m_options)});
+  m_counters.linear_iters += m_solver.iterations() - cg_before;
+  m_counters.newton_iters += result.iterations;
+  m_counters.rhs_evals += result.rhs_evals;
+  m_counters.jacobian_setups += result.setups;
+  m_counters.line_search_backtracks += result.backtracks;
+  if (!result.converged) {
+    ++m_counters.convergence_failures;
+    throw IntegratorFailure("CONV_FAILURE",
+                            "implicit-euler: backward Euler did not converge in " +
+                                std::to_string(result.iterations) + " Newton iterations at t = " +
+                                std::to_string(t_next));
+  }
+  m_y = m_increment;
+}
+
+void ImplicitEuler::linearised_step(double t_next) {
   const double h = t_next - m_t;
   VecMap x = positions(), v = velocities();
   const Eigen::Index n3 = x.size();
@@ -35,8 +72,6 @@ double ImplicitEuler::step(double t_stop) {
   m_counters.linear_iters += m_solver.iterations() - cg_before;
   ++m_counters.newton_iters;
   m_y += m_increment;  // x += h (v + dv), v += dv
-  m_system.project(t_next, x, v);
-  return accept_fixed_step(t_next);
 }
 
 }  // namespace drape

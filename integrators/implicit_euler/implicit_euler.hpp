@@ -1,6 +1,9 @@
 #pragma once
+#include <optional>
+
 #include "integrators/interface/integrator.hpp"
 #include "integrators/interface/integrator_options.hpp"
+#include "integrators/newton/line_search_newton.hpp"
 #include "integrators/newton/reduced_newton_solver.hpp"
 
 namespace drape {
@@ -14,7 +17,11 @@ namespace drape {
 /// to the relative residual `linear_tolerance` (default 1e-3), or by a sparse LDLT
 /// factorisation (`sparse-direct`). Then the projection of docs/model.md section 5. First order,
 /// unconditionally stable for the linearised problem; one force evaluation and one Jacobian
-/// per step.
+/// per step. With `solve` = converged, backward Euler itself: the one stage
+/// z = y_n + h f(t_{n+1}, z) minimised by the line-search Newton of the ARKODE stages
+/// (line_search_newton.hpp) until its update is within ARKODE's test (weights
+/// 1 / (rtol |y_n| + atol), tolerance 0.1), which separates linearisation error from backward
+/// Euler's damping (docs/integrators.md).
 class ImplicitEuler final : public Integrator {
  public:
   /// Reads dt, linear_solver, linear_tolerance and max_linear_iters from `options`.
@@ -22,9 +29,16 @@ class ImplicitEuler final : public Integrator {
   double step(double t_stop) override;
 
  private:
+  /// The linearised step (Baraff and Witkin) to t_next.
+  void linearised_step(double t_next);
+  /// Backward Euler solved to convergence; throws IntegratorFailure when it is not.
+  void converged_step(double t_next);
+
+  IntegratorOptions m_options;
   double m_dt;
   ReducedNewtonSolver m_solver;
-  Eigen::VectorXd m_residual, m_increment;
+  std::optional<LineSearchNewton> m_line_search;  // solve = converged
+  Eigen::VectorXd m_residual, m_increment, m_weights;
 };
 
 }  // namespace drape

@@ -14,7 +14,8 @@ nlohmann::json IntegratorCounters::to_json() const {
           {"error_test_failures", error_test_failures},
           {"convergence_failures", convergence_failures},
           {"resets", resets},
-          {"step_halvings", step_halvings}};
+          {"step_halvings", step_halvings},
+          {"line_search_backtracks", line_search_backtracks}};
 }
 
 void Integrator::reset(double t, const Eigen::VectorXd& y) {

@@ -22,6 +22,7 @@ struct IntegratorCounters {
   long convergence_failures = 0;  ///< nonlinear or linear solver failures
   long resets = 0;                ///< restarts at events
   long step_halvings = 0;         ///< fixed steps retried as two halves after a solver failure
+  long line_search_backtracks = 0;  ///< step halvings of the stage solves' line search
 
   nlohmann::json to_json() const;
 };

@@ -12,13 +12,22 @@ struct IntegratorOptions {
   double dt = 0.0;                ///< fixed step, or first step of an adaptive run [s]
   bool adaptive = false;          ///< error-controlled steps (ARKODE only)
   std::string table;              ///< ARKODE Butcher table name, "" for the method's default
+  /// arkode-dirk: an inline Butcher table (butcher_tableau.hpp) given as `table`, null if none.
+  nlohmann::json user_table;
   double rtol = 1e-4;             ///< relative tolerance of adaptive runs
   double atol = 1e-7;             ///< absolute tolerance of adaptive runs
   double max_dt = 0.0;            ///< largest adaptive step, 0 = unbounded
   /// Implicit solves (docs/integrators.md), implicit integrators only; "" = the default of
   /// linear_solver_of().
   std::string linear_solver;
-  int max_newton_iters = 10;      ///< Newton iterations per stage before a failure
+  /// Newton iterations per stage before a failure; 0 = max_newton_iters_of()'s default.
+  int max_newton_iters = 0;
+  /// arkode-dirk and arkode-imex: how stages are solved, `line-search` (Newton on the incremental
+  /// potential with a line search, docs/integrators.md) or `newton` (ARKODE's); "" = newton.
+  std::string nonlinear_solver;
+  /// implicit-euler: `linearised` (one Newton step, Baraff and Witkin) or `converged` (backward
+  /// Euler solved by the line-search Newton); "" = linearised.
+  std::string solve;
   /// Fixed-step ARKODE runs: how many times a step whose solve fails may be halved (0: the
   /// first failure ends the run).
   int max_step_halvings = 10;
@@ -37,6 +46,13 @@ std::string linear_solver_of(const IntegratorOptions& options);
 double default_linear_tolerance(const std::string& name);
 /// `linear_tolerance`, or the integrator's default when it is 0.
 double linear_tolerance_of(const IntegratorOptions& options);
+
+/// Whether the run solves its stages with the line-search Newton (arkode-dirk and arkode-imex
+/// by default, implicit-euler with solve = converged).
+bool uses_line_search(const IntegratorOptions& options);
+/// `max_newton_iters`, or when 0: 10 for ARKODE's Newton, 100 for the line-search Newton (it
+/// needed 19-55 iterations on a stiff sheet at 1/30 s, docs/integrators.md).
+int max_newton_iters_of(const IntegratorOptions& options);
 
 /// Reads and validates an `integrator` object; errors name `file` and `path.key`.
 IntegratorOptions read_integrator_options(const nlohmann::json& object, const std::string& file,

@@ -1,0 +1,90 @@
+#include "integrators/newton/incremental_potential.hpp"
+
+#include "core/forces/forces.hpp"
+
+namespace drape {
+
+IncrementalPotential::IncrementalPotential(const ClothSystem& system, ForceSplit split)
+    : m_system(system), m_split(split) {}
+
+void IncrementalPotential::begin_stage(double t, double gamma, ConstVecRef a, VecRef z) {
+  m_t = t;
+  m_gamma = gamma;
+  m_a = a;
+  // The fixed rows of f_I are the prescribed motion, whatever z: one evaluation gives them.
+  m_fixed_rhs.resize(a.size());
+  m_system.rhs(t, z, m_fixed_rhs, m_split);
+  const Eigen::Index n3 = a.size() / 2;
+  for (const int i : m_system.constraints().fixed_particles()) {
+    particle(z.head(n3), i) = particle(a.head(n3), i) + gamma * particle(m_fixed_rhs.head(n3), i);
+    particle(z.tail(n3), i) = particle(a.tail(n3), i) + gamma * particle(m_fixed_rhs.tail(n3), i);
+  }
+  state_of(Eigen::VectorXd(z.tail(n3)), z);
+  freeze_damping(z);
+}
+
+void IncrementalPotential::freeze_damping(ConstVecRef z) {
+  const SpringSet& springs = m_system.cloth().springs;
+  const auto x = z.head(z.size() / 2);
+  m_directions.resize(static_cast<std::size_t>(springs.size()));
+  for (Eigen::Index e = 0; e < springs.size(); ++e) {
+    const Vec3 d = particle(x, springs.second[e]) - particle(x, springs.first[e]);
+    const double length = d.norm();
+    // The damping force of forces.hpp is zero on a degenerate spring: so is its dissipation.
+    m_directions[static_cast<std::size_t>(e)] =
+        length < degenerate_length ? Vec3::Zero() : Vec3(d / length);
+  }
+}
+
+void IncrementalPotential::state_of(ConstVecRef v, VecRef z) const {
+  const Eigen::Index n3 = z.size() / 2;
+  const auto& fixed = m_system.constraints().mask();
+  for (Eigen::Index i = 0; i < n3 / 3; ++i) {
+    if (fixed[static_cast<std::size_t>(i)]) continue;
+    particle(z.tail(n3), i) = particle(v, i);
+    particle(z.head(n3), i) = particle(m_a.head(n3), i) + m_gamma * particle(v, i);
+  }
+}
+
+double IncrementalPotential::value(ConstVecRef z) const {
+  const Eigen::Index n3 = z.size() / 2;
+  const auto x = z.head(n3), v = z.tail(n3);
+  const auto& fixed = m_system.constraints().mask();
+  const double mass = m_system.particle_mass();
+  const bool springs_part = m_split != ForceSplit::non_springs;
+  const bool rest_part = m_split != ForceSplit::springs;
+  double inertia = 0.0, air = 0.0;
+  for (Eigen::Index i = 0; i < n3 / 3; ++i) {
+    if (fixed[static_cast<std::size_t>(i)]) continue;
+    inertia += (particle(v, i) - particle(m_a.tail(n3), i)).squaredNorm();
+    air += particle(v, i).squaredNorm();
+  }
+  const EnergyBreakdown u = m_system.energy(x, v);
+  double e = 0.5 * mass * inertia;
+  if (springs_part) {
+    e += u.spring;
+    const SpringSet& springs = m_system.cloth().springs;
+    const double c = m_system.cloth().params.damping_spring;
+    double dissipation = 0.0;
+    for (Eigen::Index s = 0; c > 0.0 && s < springs.size(); ++s) {
+      const double rate = (particle(v, springs.second[s]) - particle(v, springs.first[s]))
+                              .dot(m_directions[static_cast<std::size_t>(s)]);
+      dissipation += rate * rate;
+    }
+    e += m_gamma * 0.5 * c * dissipation;
+  }
+  // Air damping on fixed particles is no function of the unknowns: left out like their inertia.
+  if (rest_part)
+    e += u.gravity + u.collision + m_gamma * 0.5 * m_system.cloth().params.damping_air * air;
+  return e;
+}
+
+void IncrementalPotential::gradient(ConstVecRef z, VecRef g) const {
+  const Eigen::Index n3 = z.size() / 2;
+  m_force.resize(n3);
+  m_system.forces(z.head(n3), z.tail(n3), m_force, m_split);
+  g = m_system.particle_mass() * (z.tail(n3) - m_a.tail(n3)) - m_gamma * m_force;
+  m_system.constraints().zero_fixed(g);
+}
+
+}  // namespace drape

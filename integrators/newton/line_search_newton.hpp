@@ -1,0 +1,55 @@
+#pragma once
+// Newton's method on the incremental potential of an implicit stage, globalised by a
+// backtracking line search (docs/integrators.md, "Stages as minimisation"; Gast et al. 2015;
+// Nocedal and Wright 2006, algorithm 3.1; ipc-toolkit and IPC use the same globalisation).
+// Each iteration freezes E_k at the iterate, takes the Newton direction d = -S^-1 g of the
+// definite Hessian S (descent, S positive definite) and halves the step until Armijo's
+// condition E_k(v + alpha d) <= E_k(v) + 1e-4 alpha g.d holds. The stage is solved when the
+// full Newton update's weighted RMS norm (ARKODE's error weights) is at most `tolerance`, the
+// test ARKODE's own Newton applies to its updates.
+#include <Eigen/Core>
+
+#include "core/model/cloth_system.hpp"
+#include "integrators/newton/incremental_potential.hpp"
+#include "integrators/newton/reduced_newton_solver.hpp"
+
+namespace drape {
+
+/// What one stage solve did.
+struct StageSolve {
+  bool converged = false;
+  int iterations = 0;   ///< Newton iterations (directions computed)
+  long backtracks = 0;  ///< step halvings of the line search
+  long rhs_evals = 0;   ///< force evaluations (gradients and the fixed rows)
+  long setups = 0;      ///< Hessian evaluations
+};
+
+/// How a stage solve stops.
+struct StageTolerance {
+  ConstVecRef weights;  ///< 6N error weights: the update's norm is sqrt(mean((w_i dz_i)^2))
+  double tolerance;     ///< largest weighted RMS norm of a converged update
+  int max_iterations;
+};
+
+/// The line-search Newton minimiser of IncrementalPotential.
+class LineSearchNewton {
+ public:
+  /// `solver` solves with the Hessian S (its split must be `split`).
+  LineSearchNewton(const ClothSystem& system, ForceSplit split, ReducedNewtonSolver& solver);
+
+  /// Solves z = a + gamma f_I(t, z) starting from the guess z (6N), which receives the solution
+  /// (the last iterate when not converged).
+  StageSolve solve(double t, double gamma, ConstVecRef a, VecRef z, const StageTolerance& stop);
+  const IncrementalPotential& potential() const { return m_potential; }
+
+ private:
+  /// Armijo backtracking from z along d; false when 30 halvings found no decrease.
+  bool line_search(VecRef z, double slope, StageSolve& result);
+
+  const ClothSystem& m_system;
+  IncrementalPotential m_potential;
+  ReducedNewtonSolver& m_solver;
+  Eigen::VectorXd m_gradient, m_rhs, m_step, m_v, m_trial;
+};
+
+}  // namespace drape
