@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/collision/smooth_contact.hpp"
 #include "core/forces/forces.hpp"
 
 namespace drape {
@@ -46,7 +47,31 @@ Collision::Collision(std::shared_ptr<const Dummy> dummy, const CollisionParams& 
       m_params(params),
       m_contacts(m_dummy, params.threshold, m_dummy ? num_particles : 0),
       m_outside_anchor(Eigen::VectorXd::Zero(m_dummy ? 3 * num_particles : 0)),
-      m_outside_margin2(Eigen::VectorXd::Constant(m_dummy ? num_particles : 0, -1.0)) {}
+      m_outside_margin2(Eigen::VectorXd::Constant(m_dummy ? num_particles : 0, -1.0)) {
+  if (m_dummy && params.model == CollisionModel::smooth) m_smooth.emplace(m_dummy->sections());
+}
+
+Vec3 Collision::smooth_force(const Vec3& x) const {
+  const SmoothGap g = m_smooth->gap(x);
+  return -smooth_contact_slope(g.gap, m_params.stiffness, m_params.threshold) * g.gradient;
+}
+
+// Newton's method on G along its gradient: radial on the sides, vertical at the end planes.
+// A few steps reach G = 0 to round-off from the shallow penetrations a step leaves.
+bool Collision::correct_smooth_penetration(Vec3& x, Vec3& v) const {
+  SmoothGap g = m_smooth->gap(x);
+  if (g.gap >= 0.0) return false;
+  for (int iteration = 0; iteration < 8 && g.gap < 0.0; ++iteration) {
+    const double norm2 = g.gradient.squaredNorm();
+    if (!(norm2 > 0.0)) break;
+    x -= (g.gap / norm2) * g.gradient;
+    g = m_smooth->gap(x);
+  }
+  const Vec3 normal = g.gradient.normalized();
+  const double inward = v.dot(normal);
+  if (inward < 0.0) v -= inward * normal;
+  return true;
+}
 
 Vec3 Collision::surface_force(const Vec3& x) const {
   const double delta = m_params.threshold, k = m_params.stiffness;
@@ -65,6 +90,7 @@ double Collision::energy(int i, const Vec3& x) const {
     const auto g = m_dummy->surface_gap(x);
     return g && g->gap < delta ? 0.5 * k * (delta - g->gap) * (delta - g->gap) : 0.0;
   }
+  if (m_smooth) return smooth_contact_energy(m_smooth->gap(x).gap, k, delta);
   const NearestObjectParticle hit = m_contacts.nearest(i, x);
   return hit.index < 0 ? 0.0 : collision_energy(x - m_dummy->position(hit.index), k, delta);
 }
@@ -83,13 +109,22 @@ Mat3 Collision::jacobian(int i, const Vec3& x, bool definite) const {
     if (!g || g->gap >= delta) return Mat3::Zero();
     return -k * g->gradient * g->gradient.transpose();
   }
+  if (m_smooth) {
+    // Hessian of E(G(x)): E'' grad G grad G^T + E' Hess G; the second term is indefinite
+    // wherever the surface curves, hence the projection for the definite Jacobian.
+    const SmoothGap g = m_smooth->gap(x);
+    if (g.gap >= delta) return Mat3::Zero();
+    const Mat3 hessian = smooth_contact_curvature(g.gap, k, delta) * g.gradient * g.gradient.transpose() +
+                         smooth_contact_slope(g.gap, k, delta) * g.hessian;
+    return -(definite ? project_to_psd(hessian) : hessian);
+  }
   const NearestObjectParticle hit = m_contacts.nearest(i, x);
   if (hit.index < 0) return Mat3::Zero();
   return collision_jacobian(x - m_dummy->position(hit.index), k, delta, definite);
 }
 
 void Collision::pair_contacts(ConstVecRef x) {
-  if (!m_dummy) return;
+  if (!m_dummy || m_smooth) return;
   m_planes.resize(static_cast<std::size_t>(x.size() / 3));
   for (std::size_t i = 0; i < m_planes.size(); ++i) {
     const Vec3 xi = particle(x, static_cast<Eigen::Index>(i));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/dummy/dummy.hpp"
+#include "core/dummy/smooth_surface.hpp"
 #include "core/forces/forces.hpp"
 
 namespace drape {
@@ -18,6 +19,7 @@ namespace drape {
 enum class CollisionModel {
   particle,  ///< the paper's: repulsion from the nearest object particle
   surface,   ///< extension: repulsion from the interpolated surface (no particle switching)
+  smooth,    ///< extension: a C2 potential on the smooth spline surface (section 4.11)
 };
 
 /// Collision parameters of the paper's section 2.3 (docs/model.md section 4).
@@ -66,8 +68,11 @@ namespace drape {
 /// force k (delta - d) (x - p_o) / d, energy k (delta - d)^2 / 2; a particle inside the surface
 /// moves onto p_o. `surface`: with the radial gap g = r_h - R(y, theta) to the interpolated
 /// surface (Dummy::surface_gap) and g < delta, energy k (delta - g)^2 / 2 and force
-/// k (delta - g) grad g; a particle inside moves radially onto the surface. Both remove the
-/// inward normal velocity of a corrected particle.
+/// k (delta - g) grad g; a particle inside moves radially onto the surface. `smooth`: with the
+/// C2 gap G of SmoothSurface, energy k/(3 delta) (delta - G)^3 for G < delta, its exact
+/// Hessian (projected to positive semi-definite for the definite Jacobian), and a particle
+/// inside moves onto G = 0 along grad G. All remove the inward normal velocity of a corrected
+/// particle.
 ///
 /// Contact pairing (the implicit integrators' contact set of a step, docs/integrators.md):
 /// after pair_contacts(x), until the next pair_contacts() or unpair_contacts(), each cloth
@@ -79,7 +84,8 @@ namespace drape {
 /// (section heights, angle bins) or through an object particle (the point repulsion turns its
 /// direction around there, and a corrected penetration puts a particle exactly on it), so
 /// Newton's method on an implicit stage sees a piecewise linear force (a kink at the threshold).
-/// At the positions x themselves it equals the unpaired force bit for bit.
+/// At the positions x themselves it equals the unpaired force bit for bit. The `smooth` model
+/// needs no pairing: pair_contacts() leaves it unpaired.
 class Collision {
  public:
   /// `dummy` may be null: then every term is zero.
@@ -91,7 +97,8 @@ class Collision {
   /// Collision energy of cloth particle i at x.
   double energy(int i, const Vec3& x) const;
   /// dF/dx of cloth particle i at x. The surface model uses the Gauss-Newton part
-  /// -k grad g grad g^T (it drops the surface's curvature term), definite either way.
+  /// -k grad g grad g^T (it drops the surface's curvature term), definite either way. The
+  /// smooth model gives minus its energy's exact Hessian, projected to PSD when definite.
   Mat3 jacobian(int i, const Vec3& x, bool definite) const;
   /// Moves cloth particle i, found inside the object, out of it and removes its inward normal
   /// velocity; returns whether it was inside.
@@ -128,10 +135,13 @@ class Collision {
   ContactPlane surface_plane(const Vec3& x) const;
   Vec3 surface_force(const Vec3& x) const;
   bool correct_penetration_off_margin(int i, Vec3& x, Vec3& v) const;
+  Vec3 smooth_force(const Vec3& x) const;
+  bool correct_smooth_penetration(Vec3& x, Vec3& v) const;
 
   std::shared_ptr<const Dummy> m_dummy;
   CollisionParams m_params;
   ContactFinder m_contacts;
+  std::optional<SmoothSurface> m_smooth;  // the `smooth` model's surface, built once
   // Per cloth particle, a point and a distance within which nothing is inside the object
   // (Dummy::outside_margin): a fact about space, true whatever the particle does, so a particle
   // still within it needs no penetration test. Mutable like ContactFinder's lists.
@@ -161,6 +171,7 @@ inline NearestObjectParticle ContactFinder::nearest(int i, const Vec3& x) const 
 
 inline bool Collision::correct_penetration(int i, Vec3& x, Vec3& v) const {
   if (!m_dummy) return false;
+  if (m_smooth) return correct_smooth_penetration(x, v);
   // Both models' inside is the radial gap below 0 between the end sections: nothing within the
   // margin of the anchor is.
   if ((x - m_outside_anchor.segment<3>(3 * i)).squaredNorm() < m_outside_margin2[i]) return false;
@@ -186,6 +197,7 @@ inline Vec3 Collision::force(int i, const Vec3& x) const {
   if (!m_dummy) return Vec3::Zero();
   if (!m_planes.empty()) return paired_force(i, x);
   if (m_params.model == CollisionModel::surface) return surface_force(x);
+  if (m_smooth) return smooth_force(x);
   const NearestObjectParticle hit = m_contacts.nearest(i, x);
   if (hit.index < 0) return Vec3::Zero();
   return collision_force(x - m_dummy->position(hit.index), hit.distance,

@@ -95,8 +95,11 @@ CollisionParams read_collision(JsonReader in) {
   const std::string model = in.string("model", "particle");
   if (model == "surface")
     c.model = CollisionModel::surface;
+  else if (model == "smooth")
+    c.model = CollisionModel::smooth;
   else if (model != "particle")
-    throw in.error("model", "unknown collision model '" + model + "' (known: particle, surface)");
+    throw in.error("model",
+                   "unknown collision model '" + model + "' (known: particle, surface, smooth)");
   in.finish();
   return c;
 }
