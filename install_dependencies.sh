@@ -3,7 +3,8 @@
 set -euo pipefail
 packages=(cmake g++ make libeigen3-dev libsundials-dev nlohmann-json3-dev libgtest-dev
           libbenchmark-dev libcli11-dev libfmt-dev libtinyobjloader-dev python3-matplotlib
-          python3-numpy parallel libjs-three chromium)
+          python3-numpy parallel libjs-three chromium
+          libcpp-httplib-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
