@@ -16,6 +16,7 @@
 #include "experiments/run/run_scene.hpp"
 #include "integrators/interface/registry.hpp"
 #include "experiments/viewer/view_command.hpp"
+#include "experiments/live/live_command.hpp"
 
 namespace {
 
@@ -93,6 +94,7 @@ int main(int argc, char** argv) {
 
   const drape::ExperimentCommands experiment_commands(app);
   drape::add_view_command(app);  // runs inside app.parse (docs/viewer.md)
+  drape::add_live_command(app);  // runs inside app.parse (docs/viewer.md, Live mode)
 
   try {
     app.parse(argc, argv);

@@ -18,6 +18,8 @@ nlohmann::json events_json(const Manipulator& manipulator, const Cloth& cloth) {
   return events;
 }
 
+}  // namespace
+
 nlohmann::json run_summary(const SceneSimulation& run, const EnergyWriter& energy) {
   const Simulation& simulation = run.simulation();
   const Integrator& integrator = simulation.integrator();
@@ -57,8 +59,6 @@ nlohmann::json run_summary(const SceneSimulation& run, const EnergyWriter& energ
   }
   return summary;
 }
-
-}  // namespace
 
 RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
                      SimulationObserver* observer) {

@@ -22,6 +22,11 @@ struct RunOutcome {
   nlohmann::json summary;
 };
 
+class SceneSimulation;
+class EnergyWriter;
+/// summary.json's contents for a run that has ended or been stopped (docs/outputs.md).
+nlohmann::json run_summary(const SceneSimulation& run, const EnergyWriter& energy);
+
 /// Runs the scene and writes summary.json, energy.csv and state.csv into out_dir.
 /// Throws InputError for invalid input found while building the model. `observer`, if given,
 /// watches the run too (an experiment's progress display).

@@ -23,6 +23,8 @@ class SceneSimulation {
   const IntegratorOptions& options() const { return m_options; }
   const ClothSystem& system() const { return *m_system; }
   bool has_input() const { return m_input.has_value(); }
+  /// The hand input the manipulator reads; the live mode adds keys to its track between steps.
+  HandInput* input() { return m_input ? &*m_input : nullptr; }
 
  private:
   Scene m_scene;
