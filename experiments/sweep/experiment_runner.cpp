@@ -250,7 +250,6 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
       pending.push_back(k);
     }
   }
-  bar.update(tally);
   const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t jobs = options.jobs > 0 ? options.jobs : hardware;
   auto dir_of = [&](std::size_t p) { return options.out_dir / "runs" / slice[pending[p]]->id; };
