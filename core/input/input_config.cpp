@@ -1,6 +1,7 @@
 #include "core/input/input_config.hpp"
 
 #include "core/scene/json_reader.hpp"
+#include "core/scene/json_text.hpp"
 
 namespace drape {
 namespace {
@@ -11,7 +12,7 @@ Mat3 read_rotation(JsonReader& reader, const std::string& key) {
   std::vector<double> v;
   const auto bad = [&] {
     return reader.error(key, "expected a 3x3 rotation: 9 numbers row-major or 3 rows of 3, got " +
-                                 value.dump());
+                                 quote_json(value));
   };
   if (!value.is_array()) throw bad();
   for (const auto& item : value) {
@@ -74,8 +75,9 @@ InputConfig parse_input_config(const nlohmann::json& input, const std::string& s
     std::filesystem::path path = reader.string("recording");
     if (path.empty()) throw reader.error("recording", "empty path");
     if (path.is_relative()) path = base_dir / path;
-    if (!std::filesystem::is_regular_file(path))
-      throw reader.error("recording", "no such file: " + path.string());
+    // A directory or a device (/dev/zero) is not "no such file", and reading one would hang.
+    if (const auto reason = unreadable_file_reason(path.string()))
+      throw reader.error("recording", path.string() + ": " + *reason);
     config.recording = path.lexically_normal().string();
   }
   config.format = read_choice(reader, "format", RecordingFormat::Auto, format_choices);

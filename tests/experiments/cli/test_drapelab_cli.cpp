@@ -108,7 +108,7 @@ TEST(DrapelabRun, SetOverridesAreValidatedLikeTheFile) {
 TEST(DrapelabRun, MissingFileAndBadUsageExitWithTwo) {
   Result r = drapelab("run /nonexistent/scene.json --out /tmp/unused");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("/nonexistent/scene.json: cannot open file"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/nonexistent/scene.json: no such file"), std::string::npos) << r.err;
   EXPECT_EQ(drapelab("run").exit_code, 2);
   EXPECT_EQ(drapelab("frobnicate").exit_code, 2);
 }
