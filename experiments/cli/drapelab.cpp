@@ -9,13 +9,15 @@
 #include "core/scene/scene.hpp"
 #include "experiments/cli/experiment_cli.hpp"
 #include "experiments/cli/run_stats.hpp"
+#include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "integrators/interface/registry.hpp"
 
 namespace {
 
 int run_command(const std::string& scene_file, const std::string& out_dir,
-                const std::vector<std::string>& overrides, bool quiet) {
+                const std::vector<std::string>& overrides, bool quiet, bool overwrite) {
+  drape::check_run_folder(out_dir, overwrite);  // before anything is read or built
   const drape::Scene scene = drape::load_scene(scene_file, overrides);
   const drape::RunOutcome outcome = drape::run_scene(scene, out_dir);
   if (outcome.status != "ok")
@@ -59,6 +61,8 @@ int main(int argc, char** argv) {
       ->take_all();
   bool quiet = false;
   run->add_flag("--quiet,-q", quiet, "print nothing on success (the stats block is summary.json)");
+  bool overwrite = false;
+  run->add_flag("--overwrite", overwrite, "replace the run files of an earlier run in --out");
 
   app.add_subcommand("integrators", "list integrators and ARKODE tables with their orders");
 
@@ -78,7 +82,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (run->parsed()) return run_command(scene_file, out_dir, overrides, quiet);
+    if (run->parsed()) return run_command(scene_file, out_dir, overrides, quiet, overwrite);
     if (convert->parsed()) {
       drape::convert_recording(convert_in, convert_out);
       return drape::exit_ok;
