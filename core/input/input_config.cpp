@@ -1,6 +1,7 @@
 #include "core/input/input_config.hpp"
 
 #include "core/scene/json_reader.hpp"
+#include "core/scene/scene_limits.hpp"
 #include "core/scene/json_text.hpp"
 
 namespace drape {
@@ -98,9 +99,11 @@ InputConfig parse_input_config(const nlohmann::json& input, const std::string& s
 
   if (reader.has("transform")) {
     JsonReader transform = reader.object("transform");
-    config.transform.scale = transform.positive("scale", transform.number("scale", 1.0));
+    config.transform.scale = transform.at_most(
+        "scale", transform.positive("scale", transform.number("scale", 1.0)), 1e3);
     if (transform.has("rotation")) config.transform.rotation = read_rotation(transform, "rotation");
-    config.transform.translation = transform.vec3("translation", Vec3::Zero());
+    config.transform.translation = transform.within(
+        "translation", transform.vec3("translation", Vec3::Zero()), limits::max_coordinate);
     transform.finish();
   }
   config.time.offset = reader.number("time_offset", 0.0);

@@ -37,7 +37,7 @@ void append_brief(const nlohmann::json& value, int levels, std::string& out) {
   if (out.size() > max_quoted_chars) return;
   if (!value.is_structured()) {
     std::string text = value.dump();
-    if (text.size() > max_quoted_chars) text.resize(max_quoted_chars);
+    if (text.size() > max_quoted_chars) text.resize(max_quoted_chars + 1);  // cut with "..."
     out += text;
     return;
   }

@@ -189,7 +189,7 @@ Scene parse_scene(const nlohmann::json& source, const std::string& file,
   s.cloth = read_cloth(in.object("cloth"));
   s.pins = read_pins(in, s.cloth);
   s.forces.gravity = in.vec3("gravity", s.forces.gravity);
-  in.at_most("gravity", s.forces.gravity.norm(), limits::max_gravity);
+  in.within("gravity", s.forces.gravity, limits::max_gravity);
   s.dummy = in.has("dummy") ? in.raw("dummy") : nlohmann::json{{"builtin", "dress-form"}};
   if (!s.dummy.is_null() && !s.dummy.is_object())
     throw in.error("dummy", "expected an object or null");

@@ -122,7 +122,7 @@ TEST(SceneLimits, ValuesWhoseProductsOverflowAreRefused) {
   EXPECT_EQ(error_for(with("cloth.origin=[0, 1e300, 0]")),
             "scene.json: cloth.origin: must be within +-1000000.0");
   EXPECT_EQ(error_for(with("gravity=[0, -1e200, 0]")),
-            "scene.json: gravity: must be at most 1000.0, got 1e+200");
+            "scene.json: gravity: must be within +-1000.0");
   EXPECT_EQ(error_for(with("duration=1e300")),
             "scene.json: duration: must be at most 1000000.0, got 1e+300");
 }

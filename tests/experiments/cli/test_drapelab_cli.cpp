@@ -232,7 +232,7 @@ TEST(DrapelabHarden, DeepJsonAndNonFilesAreInputErrors) {
   r = drapelab("run " + (dir / "a_folder").string() + " --out " + (dir / "o").string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("a_folder: is a directory, not a file"), std::string::npos) << r.err;
-  for (const std::string recording : {(dir / "a_folder").string(), std::string("/dev/zero")}) {
+  for (const std::string& recording : {(dir / "a_folder").string(), std::string("/dev/zero")}) {
     nlohmann::json scene = hanging_cloth();
     scene["input"] = {{"recording", recording}};
     r = drapelab("run " + write_scene("rec.json", scene).string() + " --out " + (dir / "o").string());
