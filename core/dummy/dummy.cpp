@@ -94,6 +94,7 @@ Dummy::Dummy(DummySections sections) : m_sections(std::move(sections)) {
 
 void Dummy::particles_within(const Vec3& p, double radius, std::vector<int>& out) const {
   out.clear();
+  if (!p.allFinite()) return;  // no contact for a non-finite point
   m_grid.for_each_within(p, radius, [&](int o) { out.push_back(o); });
   std::sort(out.begin(), out.end());
 }
@@ -101,11 +102,14 @@ void Dummy::particles_within(const Vec3& p, double radius, std::vector<int>& out
 double Dummy::angle(int j) const { return kTwoPi * j / points(); }
 
 NearestObjectParticle Dummy::nearest(const Vec3& p) const {
+  if (!p.allFinite()) return {};  // index -1: a non-finite point has no nearest particle
   const detail::GridHit hit = m_grid.nearest(p);
   return {hit.index, std::sqrt(hit.distance_squared)};
 }
 
 NearestObjectParticle Dummy::nearest_within(const Vec3& p, double radius) const {
+  // A non-finite point (a run about to end diverged) is in contact with nothing.
+  if (!p.allFinite()) return {};
   const detail::GridHit hit = m_grid.nearest_within(p, radius);
   if (hit.index < 0) return {};
   return {hit.index, std::sqrt(hit.distance_squared)};
@@ -123,6 +127,10 @@ NearestObjectParticle Dummy::nearest_brute_force(const Vec3& p) const {
 int Dummy::bracket(double y, double& t) const {
   const auto& ys = m_sections.y;
   const int last = num_sections() - 2;
+  if (!std::isfinite(y)) {  // a NaN must not become a section index; callers reject it first
+    t = 0.0;
+    return 0;
+  }
   if (y >= ys.front()) {
     t = 0.0;
     return 0;
@@ -145,6 +153,7 @@ Dummy::AngleBin Dummy::angle_bin(double theta) const {
   const int m = points();
   double u = theta * (m / kTwoPi);
   u -= m * std::floor(u / m);  // wrap into [0, m)
+  if (!(u >= 0.0)) u = 0.0;    // a NaN angle (from a non-finite point) must not become an index
   int j = static_cast<int>(u);
   if (j >= m) j = m - 1;  // u rounded up to m
   return {j, j + 1 == m ? 0 : j + 1, u - j};
@@ -170,6 +179,7 @@ double Dummy::radius_between(int k, double t, double theta) const {
 }
 
 std::optional<SurfaceGap> Dummy::surface_gap(const Vec3& p) const {
+  if (!p.allFinite()) return std::nullopt;  // no contact for a non-finite point
   const auto& ys = m_sections.y;
   if (!(p.y() < ys.front() && p.y() > ys.back())) return std::nullopt;
   double t = 0.0;
@@ -213,6 +223,7 @@ Eigen::Vector2d Dummy::axis_at(double y) const {
 }
 
 bool Dummy::inside(const Vec3& p) const {
+  if (!p.allFinite()) return false;  // no contact for a non-finite point
   if (!(p.y() <= m_sections.y.front() && p.y() >= m_sections.y.back())) return false;
   double t = 0.0;
   const int k = bracket(p.y(), t);
@@ -232,6 +243,7 @@ bool Dummy::inside(const Vec3& p) const {
 }
 
 double Dummy::outside_margin(const Vec3& p) const {
+  if (!p.allFinite()) return 0.0;  // nothing can be said of a non-finite point
   const auto& ys = m_sections.y;
   // Above the top or below the bottom section nothing is inside until y reaches the stack.
   const double out_of_range = std::max(p.y() - ys.front(), ys.back() - p.y());

@@ -6,6 +6,7 @@
 
 #include "core/dummy/dress_form.hpp"
 #include "core/scene/json_reader.hpp"
+#include "core/scene/scene_limits.hpp"
 #include "core/dummy/mesh_sections.hpp"
 
 namespace drape {
@@ -35,7 +36,15 @@ using SourceReader = DummySections (*)(JsonReader&, const std::string& key, cons
                                        const SourceContext&);
 using BuiltinReader = DummySections (*)(JsonReader&, const Resolution&);
 
+// Radii and heights beyond docs/scene.md's Limits would overflow the model's products.
+double radius_of(JsonReader& reader) {
+  return reader.at_most("radius", reader.positive("radius", reader.number("radius")),
+                        limits::max_length);
+}
+
 void require_above(const JsonReader& reader, double y_top, double y_bottom) {
+  reader.within("y_top", y_top, limits::max_coordinate);
+  reader.within("y_bottom", y_bottom, limits::max_coordinate);
   if (!(y_top > y_bottom))
     throw reader.error("y_top", "must be above y_bottom (" + nlohmann::json(y_top).dump() +
                                     " <= " + nlohmann::json(y_bottom).dump() + ")");
@@ -46,7 +55,7 @@ DummySections read_dress_form(JsonReader&, const Resolution& res) {
 }
 
 DummySections read_cylinder(JsonReader& reader, const Resolution& res) {
-  const double radius = reader.positive("radius", reader.number("radius"));
+  const double radius = radius_of(reader);
   const std::vector<double> center = reader.has("center") ? reader.numbers("center")
                                                           : std::vector<double>{0.0, 0.0};
   if (center.size() != 2) throw reader.error("center", "expected 2 numbers [cx, cz]");
@@ -58,8 +67,9 @@ DummySections read_cylinder(JsonReader& reader, const Resolution& res) {
 }
 
 DummySections read_sphere(JsonReader& reader, const Resolution& res) {
-  const double radius = reader.positive("radius", reader.number("radius"));
+  const double radius = radius_of(reader);
   const Vec3 center = reader.vec3("center", Vec3::Zero());
+  reader.within("center", center, limits::max_coordinate);
   return sphere_sections(radius, center, res.sections, res.points);
 }
 
@@ -94,7 +104,8 @@ DummySections read_file_source(JsonReader& reader, const std::string& key,
 
 DummySections read_mesh_source(JsonReader& reader, const std::string& key,
                                const Resolution& res, const SourceContext& context) {
-  const double unit = reader.positive("unit", reader.number("unit", 1.0));
+  const double unit =
+      reader.at_most("unit", reader.positive("unit", reader.number("unit", 1.0)), 1e3);
   const std::filesystem::path path = context.resolve(reader.string(key));
   // As for sections files: the scene's field first, then the mesh file's own message.
   TriangleMesh mesh;
@@ -150,8 +161,10 @@ DummySections make_dummy_sections(const nlohmann::json& spec, const std::string&
   if (static_cast<std::int64_t>(res.sections) * res.points > kMaxDummyParticles)
     throw reader.error("sections", "sections x points exceeds " +
                                        std::to_string(kMaxDummyParticles) + " particles");
-  const double scale = reader.positive("scale", reader.number("scale", 1.0));
+  const double scale =
+      reader.at_most("scale", reader.positive("scale", reader.number("scale", 1.0)), 1e3);
   const Vec3 offset = reader.vec3("offset", Vec3::Zero());
+  reader.within("offset", offset, limits::max_coordinate);
 
   const std::pair<const char*, SourceReader>* source = nullptr;
   for (const auto& candidate : kSources) {

@@ -5,10 +5,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
+#include <string>
 #include <unordered_map>
 
 #include "core/scene/input_error.hpp"
@@ -82,10 +86,30 @@ SliceSegments cut_triangles(const TriangleMesh& mesh, double y) {
   return out;
 }
 
+// tinyobjloader reads a coordinate it cannot parse ("nan", "inf", "1e999") as 0 without a word:
+// every vertex line is checked here first, naming its line.
+void check_vertex_lines(const std::string& file) {
+  std::ifstream in(file);
+  std::string line;
+  for (long number = 1; std::getline(in, line); ++number) {
+    std::istringstream fields(line);
+    std::string tag, token;
+    if (!(fields >> tag) || tag != "v") continue;
+    for (int k = 0; k < 3 && fields >> token; ++k) {
+      double x = 0.0;
+      const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), x);
+      if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(x))
+        throw InputError(file, "line " + std::to_string(number),
+                         "vertex coordinate \"" + token + "\" is not a finite number");
+    }
+  }
+}
+
 }  // namespace
 
 TriangleMesh read_obj_mesh(const std::string& file, double unit) {
   if (!std::filesystem::is_regular_file(file)) throw InputError(file, "", "cannot open the file");
+  check_vertex_lines(file);
   tinyobj::ObjReaderConfig config;
   // Polygons are fanned from their first corner below rather than split along their shorter
   // diagonal by tinyobjloader: that is how the reference slicing of the built-in body split

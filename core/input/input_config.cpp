@@ -1,6 +1,8 @@
 #include "core/input/input_config.hpp"
 
 #include "core/scene/json_reader.hpp"
+#include "core/scene/scene_limits.hpp"
+#include "core/scene/json_text.hpp"
 
 namespace drape {
 namespace {
@@ -11,7 +13,7 @@ Mat3 read_rotation(JsonReader& reader, const std::string& key) {
   std::vector<double> v;
   const auto bad = [&] {
     return reader.error(key, "expected a 3x3 rotation: 9 numbers row-major or 3 rows of 3, got " +
-                                 value.dump());
+                                 quote_json(value));
   };
   if (!value.is_array()) throw bad();
   for (const auto& item : value) {
@@ -74,8 +76,9 @@ InputConfig parse_input_config(const nlohmann::json& input, const std::string& s
     std::filesystem::path path = reader.string("recording");
     if (path.empty()) throw reader.error("recording", "empty path");
     if (path.is_relative()) path = base_dir / path;
-    if (!std::filesystem::is_regular_file(path))
-      throw reader.error("recording", "no such file: " + path.string());
+    // A directory or a device (/dev/zero) is not "no such file", and reading one would hang.
+    if (const auto reason = unreadable_file_reason(path.string()))
+      throw reader.error("recording", path.string() + ": " + *reason);
     config.recording = path.lexically_normal().string();
   }
   config.format = read_choice(reader, "format", RecordingFormat::Auto, format_choices);
@@ -96,9 +99,11 @@ InputConfig parse_input_config(const nlohmann::json& input, const std::string& s
 
   if (reader.has("transform")) {
     JsonReader transform = reader.object("transform");
-    config.transform.scale = transform.positive("scale", transform.number("scale", 1.0));
+    config.transform.scale = transform.at_most(
+        "scale", transform.positive("scale", transform.number("scale", 1.0)), 1e3);
     if (transform.has("rotation")) config.transform.rotation = read_rotation(transform, "rotation");
-    config.transform.translation = transform.vec3("translation", Vec3::Zero());
+    config.transform.translation = transform.within(
+        "translation", transform.vec3("translation", Vec3::Zero()), limits::max_coordinate);
     transform.finish();
   }
   config.time.offset = reader.number("time_offset", 0.0);

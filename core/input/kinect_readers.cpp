@@ -87,7 +87,11 @@ Recording read_kinect_v2_csv(const std::string& file) {
     if (recording.frames.empty()) first_tick = tick;
     HandFrame frame;
     // Differences of 64-bit ticks first, so that the seconds keep full precision.
-    frame.t = static_cast<double>(tick - first_tick) / ticks_per_second;
+    long long ticks = 0;
+    if (__builtin_sub_overflow(tick, first_tick, &ticks))  // would be undefined behaviour
+      throw lines.error("timestamp",
+                        "too far from the first frame's (the difference overflows 64 bits)");
+    frame.t = static_cast<double>(ticks) / ticks_per_second;
     if (!recording.frames.empty())
       detail::check_time_order(recording.frames.back().t, frame.t, file,
                                lines.where("timestamp"));

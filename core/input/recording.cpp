@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/scene/json_reader.hpp"
+#include "core/scene/json_text.hpp"
 #include "core/input/kinect_readers.hpp"
 
 namespace drape {
@@ -31,7 +32,7 @@ HandFrame read_frame(const nlohmann::json& object, const std::string& file,
     if (!keys.is_array()) throw reader.error("keys", "expected an array of key names");
     for (const auto& key : keys) {
       if (!key.is_string() || key.get<std::string>().empty())
-        throw reader.error("keys", "expected non-empty strings, got " + key.dump());
+        throw reader.error("keys", "expected non-empty strings, got " + quote_json(key));
       frame.keys.push_back(key.get<std::string>());
     }
   }
@@ -40,7 +41,7 @@ HandFrame read_frame(const nlohmann::json& object, const std::string& file,
     if (!hands.is_array()) throw reader.error("inferred", "expected an array of hand names");
     for (const auto& hand : hands) {
       if (hand != "left" && hand != "right")
-        throw reader.error("inferred", "expected \"left\" or \"right\", got " + hand.dump());
+        throw reader.error("inferred", "expected \"left\" or \"right\", got " + quote_json(hand));
       auto& sample = hand == "left" ? frame.left : frame.right;
       if (!sample)
         throw reader.error("inferred", hand.get<std::string>() + " hand is null or absent");
@@ -82,12 +83,8 @@ Recording read_drapelab_recording(const std::string& file) {
   bool header = false;
   while (lines.next(line)) {
     if (detail::split_fields(line, ' ').empty()) continue;
-    nlohmann::json object;
-    try {
-      object = nlohmann::json::parse(line);
-    } catch (const nlohmann::json::exception& e) {  // syntax, and numbers out of range
-      throw lines.error("", std::string("not valid JSON: ") + e.what());
-    }
+    // Syntax, numbers out of range and nesting beyond max_json_depth, naming the line.
+    const nlohmann::json object = parse_json_text(line, file, lines.where());
     if (!header) {
       JsonReader reader(object, file, lines.where() + " (header)");
       if (reader.string("format") != native_format)

@@ -196,6 +196,10 @@ void Manipulator::attach(double t, const std::string& key, detail::StateEdit& st
     if (h.held < 0) continue;
     const Vec3 hand_position = m_system.constraints().trajectory(h.held)->position(t);
     const int o = dummy->nearest(hand_position).index;
+    if (o < 0) {  // a non-finite hand has no nearest object particle
+      ignore(t, key, "the hand position is not finite");
+      continue;
+    }
     const int i = h.held;
     m_system.constraints().release(i);
     Eigen::VectorXd& y = state.edit();

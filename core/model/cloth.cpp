@@ -69,7 +69,7 @@ Cloth build_cloth(const ClothParams& params) {
   Cloth cloth;
   cloth.params = params;
   const int rows = params.rows, cols = params.cols;
-  cloth.rest_positions.resize(3 * rows * cols);
+  cloth.rest_positions.resize(3 * static_cast<Eigen::Index>(rows) * cols);
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c)
       particle(cloth.rest_positions, cloth.index(r, c)) =

@@ -1,8 +1,15 @@
 #pragma once
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
 namespace drape {
+
+/// `text` cut to at most `limit` characters, the last three "...": input can hold megabytes
+/// where a message expects a word (docs/scene.md, Limits).
+inline std::string shorten(const std::string& text, std::size_t limit = 200) {
+  return text.size() <= limit ? text : text.substr(0, limit - 3) + "...";
+}
 
 /// Bad input found at setup: names the file and the field (full dotted path) or line.
 class InputError : public std::runtime_error {
@@ -10,7 +17,7 @@ class InputError : public std::runtime_error {
   InputError(std::string file, std::string field, const std::string& message)
       : std::runtime_error(format(file, field, message)),
         m_file(std::move(file)),
-        m_field(std::move(field)) {}
+        m_field(shorten(field)) {}
 
   const std::string& file() const { return m_file; }
   const std::string& field() const { return m_field; }
@@ -19,8 +26,8 @@ class InputError : public std::runtime_error {
   static std::string format(const std::string& file, const std::string& field,
                             const std::string& message) {
     std::string where = file.empty() ? std::string("<input>") : file;
-    if (!field.empty()) where += ": " + field;
-    return where + ": " + message;
+    if (!field.empty()) where += ": " + shorten(field);
+    return where + ": " + shorten(message, 1000);
   }
   std::string m_file;
   std::string m_field;

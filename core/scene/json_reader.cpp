@@ -1,8 +1,11 @@
 #include "core/scene/json_reader.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
+
+#include "core/scene/json_text.hpp"
 
 namespace drape {
 
@@ -46,14 +49,54 @@ double JsonReader::number(const std::string& key, double fallback) {
   return has(key) ? number(key) : fallback;
 }
 
+std::optional<std::int64_t> exact_integer(const nlohmann::json& value) {
+  // Beyond 2^62 no field has a meaning, and the double comparisons below stay exact.
+  constexpr double bound = 4611686018427387904.0;  // 2^62
+  if (value.is_number_unsigned()) {
+    const auto u = value.get<std::uint64_t>();
+    if (u > static_cast<std::uint64_t>(bound)) return std::nullopt;
+    return static_cast<std::int64_t>(u);
+  }
+  if (value.is_number_integer()) return value.get<std::int64_t>();
+  if (!value.is_number_float()) return std::nullopt;
+  const double x = value.get<double>();
+  if (!(std::abs(x) <= bound) || std::floor(x) != x) return std::nullopt;
+  return static_cast<std::int64_t>(x);
+}
+
+namespace {
+
+bool integral_number(const nlohmann::json& value) {
+  if (value.is_number_integer()) return true;
+  if (!value.is_number_float()) return false;
+  const double x = value.get<double>();
+  return std::isfinite(x) && std::floor(x) == x;
+}
+
+}  // namespace
+
 int JsonReader::integer(const std::string& key) {
   const auto& value = raw(key);
-  if (!value.is_number_integer())
-    throw error(key, "expected an integer, got " + value.dump());
-  const auto wide = value.get<long long>();
-  if (wide < std::numeric_limits<int>::min() || wide > std::numeric_limits<int>::max())
-    throw error(key, "integer out of range: " + value.dump());
-  return static_cast<int>(wide);
+  if (!integral_number(value)) throw error(key, "expected an integer, got " + quote_json(value));
+  const auto wide = exact_integer(value);
+  if (!wide || *wide < std::numeric_limits<int>::min() || *wide > std::numeric_limits<int>::max())
+    throw error(key, "integer out of range: " + quote_json(value));
+  return static_cast<int>(*wide);
+}
+
+std::int64_t JsonReader::integer_in(const std::string& key, std::int64_t low, std::int64_t high) {
+  const auto& value = raw(key);
+  if (!integral_number(value)) throw error(key, "expected an integer, got " + quote_json(value));
+  const auto wide = exact_integer(value);
+  if (!wide || *wide < low || *wide > high)
+    throw error(key, "must be an integer from " + std::to_string(low) + " to " +
+                         std::to_string(high) + ", got " + quote_json(value));
+  return *wide;
+}
+
+std::int64_t JsonReader::integer_in(const std::string& key, std::int64_t low, std::int64_t high,
+                                    std::int64_t fallback) {
+  return has(key) ? integer_in(key, low, high) : fallback;
 }
 
 int JsonReader::integer(const std::string& key, int fallback) {
@@ -63,13 +106,13 @@ int JsonReader::integer(const std::string& key, int fallback) {
 bool JsonReader::boolean(const std::string& key, bool fallback) {
   if (!has(key)) return fallback;
   const auto& value = raw(key);
-  if (!value.is_boolean()) throw error(key, "expected true or false, got " + value.dump());
+  if (!value.is_boolean()) throw error(key, "expected true or false, got " + quote_json(value));
   return value.get<bool>();
 }
 
 std::string JsonReader::string(const std::string& key) {
   const auto& value = raw(key);
-  if (!value.is_string()) throw error(key, "expected a string, got " + value.dump());
+  if (!value.is_string()) throw error(key, "expected a string, got " + quote_json(value));
   return value.get<std::string>();
 }
 
@@ -79,11 +122,12 @@ std::string JsonReader::string(const std::string& key, const std::string& fallba
 
 std::vector<double> JsonReader::numbers(const std::string& key) {
   const auto& value = raw(key);
-  if (!value.is_array()) throw error(key, "expected an array of numbers, got " + value.dump());
+  if (!value.is_array()) throw error(key, "expected an array of numbers, got " + quote_json(value));
   std::vector<double> out;
   out.reserve(value.size());
   for (const auto& item : value) {
-    if (!item.is_number()) throw error(key, "expected an array of numbers, got " + value.dump());
+    if (!item.is_number())
+      throw error(key, "expected an array of numbers, got " + quote_json(value));
     out.push_back(item.get<double>());
     if (!std::isfinite(out.back())) throw error(key, "must be finite");
   }
@@ -105,6 +149,24 @@ double JsonReader::positive(const std::string& key, double value) const {
   return value;
 }
 
+double JsonReader::at_most(const std::string& key, double value, double limit) const {
+  if (!(value <= limit))
+    throw error(key, "must be at most " + nlohmann::json(limit).dump() + ", got " +
+                         nlohmann::json(value).dump());
+  return value;
+}
+
+double JsonReader::within(const std::string& key, double value, double limit) const {
+  within(key, Vec3(value, 0.0, 0.0), limit);
+  return value;
+}
+
+Vec3 JsonReader::within(const std::string& key, const Vec3& value, double limit) const {
+  if (!(value.cwiseAbs().maxCoeff() <= limit))
+    throw error(key, "must be within +-" + nlohmann::json(limit).dump());
+  return value;
+}
+
 double JsonReader::non_negative(const std::string& key, double value) const {
   if (!(value >= 0.0))
     throw error(key, "must not be negative, got " + nlohmann::json(value).dump());
@@ -116,14 +178,21 @@ void JsonReader::finish() const {
     if (!m_read.count(item.key())) throw error(item.key(), "unknown key");
 }
 
+std::optional<std::string> unreadable_file_reason(const std::string& file) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (!std::filesystem::exists(status)) return "no such file";
+  if (std::filesystem::is_directory(status)) return "is a directory, not a file";
+  // A device or a pipe (/dev/zero) never ends: reading it would hang or exhaust memory.
+  if (!std::filesystem::is_regular_file(status)) return "not a regular file";
+  if (!std::ifstream(file)) return "cannot open file (permissions?)";
+  return std::nullopt;
+}
+
 nlohmann::json read_json_file(const std::string& file) {
+  if (const auto reason = unreadable_file_reason(file)) throw InputError(file, "", *reason);
   std::ifstream in(file);
-  if (!in) throw InputError(file, "", "cannot open file");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {  // parse errors and out-of-range numbers
-    throw InputError(file, "", std::string("not valid JSON: ") + e.what());
-  }
+  return parse_json_stream(in, file);
 }
 
 }  // namespace drape

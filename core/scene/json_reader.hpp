@@ -1,6 +1,7 @@
 #pragma once
 // Strict reading of one JSON object: every key read is recorded, and finish() rejects the keys
 // nobody asked for. Errors name the file and the field by its full dotted path.
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -31,6 +32,11 @@ class JsonReader {
   double number(const std::string& key, double fallback);
   int integer(const std::string& key);
   int integer(const std::string& key, int fallback);
+  /// A 64-bit integer in [low, high]: a JSON integer, or a number with an integral value (1e8);
+  /// 0.5, 1e300 and 4294967296 for a 32-bit field are errors naming the field.
+  std::int64_t integer_in(const std::string& key, std::int64_t low, std::int64_t high);
+  std::int64_t integer_in(const std::string& key, std::int64_t low, std::int64_t high,
+                          std::int64_t fallback);
   bool boolean(const std::string& key, bool fallback);
   std::string string(const std::string& key);
   std::string string(const std::string& key, const std::string& fallback);
@@ -41,6 +47,11 @@ class JsonReader {
   /// Range checks that throw with the field's path.
   double positive(const std::string& key, double value) const;
   double non_negative(const std::string& key, double value) const;
+  /// `value` must not exceed `limit` (docs/scene.md, Limits: products of larger values overflow).
+  double at_most(const std::string& key, double value, double limit) const;
+  /// Every coordinate of `value` within [-limit, limit].
+  double within(const std::string& key, double value, double limit) const;
+  Vec3 within(const std::string& key, const Vec3& value, double limit) const;
 
   /// An InputError about a key of this object.
   InputError error(const std::string& key, const std::string& message) const;
@@ -54,7 +65,13 @@ class JsonReader {
   std::set<std::string> m_read;
 };
 
-/// Reads a JSON file; a missing or unparsable file is an InputError naming it.
+/// The integer `value` holds (a JSON integer or an integral number within +-2^62), if any.
+std::optional<std::int64_t> exact_integer(const nlohmann::json& value);
+
+/// Reads a JSON file; a missing, unreadable (a directory, /dev/zero), unparsable or too deeply
+/// nested file is an InputError naming it.
 nlohmann::json read_json_file(const std::string& file);
+/// The InputError for a path that is not a readable regular file, if it is not one.
+std::optional<std::string> unreadable_file_reason(const std::string& file);
 
 }  // namespace drape

@@ -5,6 +5,8 @@
 #include "core/fabrics/fabric.hpp"
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
+#include "core/scene/json_text.hpp"
+#include "core/scene/scene_limits.hpp"
 
 namespace drape {
 
@@ -33,17 +35,25 @@ void fill_fabric_values(nlohmann::json& cloth, const ClothParams& c) {
   cloth["k_structural"] = c.k_structural;
   cloth["k_shear"] = c.k_shear;
   cloth["k_bending"] = c.k_bending;
+// Stiffness and damping: >= 0 (or > 0) and below the bound whose products stay finite.
+double stiffness(JsonReader& in, const std::string& key, double value, bool positive) {
+  if (positive) in.positive(key, value);
+  return in.at_most(key, in.non_negative(key, value), limits::max_stiffness);
 }
 
 ClothParams read_cloth(JsonReader in) {
   ClothParams c;
-  c.rows = in.integer("rows");
-  c.cols = in.integer("cols");
-  if (c.rows < 1) throw in.error("rows", "must be at least 1");
-  if (c.cols < 1) throw in.error("cols", "must be at least 1");
-  if (c.rows * c.cols < 2) throw in.error("cols", "a cloth needs at least 2 particles");
-  c.spacing = in.positive("spacing", in.number("spacing"));
-  c.origin = in.vec3("origin");
+  c.rows = static_cast<int>(in.integer_in("rows", 1, limits::max_cloth_particles));
+  c.cols = static_cast<int>(in.integer_in("cols", 1, limits::max_cloth_particles));
+  const std::int64_t particles = std::int64_t{c.rows} * c.cols;
+  if (particles < 2) throw in.error("cols", "a cloth needs at least 2 particles");
+  if (particles > limits::max_cloth_particles)
+    throw in.error("cols", "rows x cols = " + std::to_string(particles) +
+                               " particles, more than the limit " +
+                               std::to_string(limits::max_cloth_particles));
+  c.spacing =
+      in.at_most("spacing", in.positive("spacing", in.number("spacing")), limits::max_length);
+  c.origin = in.within("origin", in.vec3("origin"), limits::max_coordinate);
   c.col_dir = unit_direction(in, "col_dir", c.col_dir);
   c.row_dir = unit_direction(in, "row_dir", c.row_dir);
   if (std::abs(c.col_dir.dot(c.row_dir)) > direction_tolerance)
@@ -51,30 +61,41 @@ ClothParams read_cloth(JsonReader in) {
   // A fabric preset supplies the mass and stiffness defaults; explicit keys still win.
   const bool preset = in.has("fabric");
   const FabricSprings d = preset ? fabric_springs(read_fabric(in), c.spacing) : FabricSprings{};
-  c.particle_mass = in.positive("particle_mass", preset ? in.number("particle_mass", d.particle_mass)
-                                                        : in.number("particle_mass"));
-  c.k_structural = in.positive("k_structural", preset ? in.number("k_structural", d.k_structural)
-                                                      : in.number("k_structural"));
-  c.k_shear = in.non_negative("k_shear", in.number("k_shear", preset ? d.k_shear : c.k_structural));
-  c.k_bending = in.non_negative("k_bending", in.number("k_bending", d.k_bending));
-  c.damping_spring = in.non_negative("damping_spring", in.number("damping_spring", 0.0));
-  c.damping_air = in.non_negative("damping_air", in.number("damping_air", 0.0));
+  c.particle_mass = in.at_most(
+      "particle_mass",
+      in.positive("particle_mass", preset ? in.number("particle_mass", d.particle_mass)
+                                          : in.number("particle_mass")),
+      limits::max_mass);
+  c.k_structural = stiffness(in, "k_structural",
+                             preset ? in.number("k_structural", d.k_structural)
+                                    : in.number("k_structural"),
+                             true);
+  c.k_shear = stiffness(in, "k_shear", in.number("k_shear", preset ? d.k_shear : c.k_structural), false);
+  c.k_bending = stiffness(in, "k_bending", in.number("k_bending", d.k_bending), false);
+  c.damping_spring = stiffness(in, "damping_spring", in.number("damping_spring", 0.0), false);
+  c.damping_air = stiffness(in, "damping_air", in.number("damping_air", 0.0), false);
   in.finish();
   return c;
 }
 
 GridPoint read_grid_point(const nlohmann::json& value, const ClothParams& cloth,
                           const std::string& file, const std::string& field) {
+  const auto bad = [&] {
+    return InputError(file, field, "expected [row, col] integers, got " + quote_json(value));
+  };
   if (!value.is_array() || value.size() != 2 || !value[0].is_number_integer() ||
       !value[1].is_number_integer())
-    throw InputError(file, field, "expected [row, col] integers, got " + value.dump());
-  GridPoint p{value[0].get<int>(), value[1].get<int>()};
-  if (p.row < 0 || p.row >= cloth.rows || p.col < 0 || p.col >= cloth.cols)
+    throw bad();
+  const std::int64_t row = exact_integer(value[0]).value_or(-1);
+  const std::int64_t col = exact_integer(value[1]).value_or(-1);
+  if (!exact_integer(value[0]) || !exact_integer(value[1])) throw bad();
+  // Compared in 64 bits: a row of 4294967296 must not wrap to 0 on the way to an int.
+  if (row < 0 || row >= cloth.rows || col < 0 || col >= cloth.cols)
     throw InputError(file, field,
-                     "[" + std::to_string(p.row) + ", " + std::to_string(p.col) +
+                     "[" + std::to_string(row) + ", " + std::to_string(col) +
                          "] is off the " + std::to_string(cloth.rows) + " x " +
                          std::to_string(cloth.cols) + " grid");
-  return p;
+  return GridPoint{static_cast<int>(row), static_cast<int>(col)};
 }
 
 std::vector<GridPoint> read_pins(JsonReader& in, const ClothParams& cloth) {
@@ -91,7 +112,8 @@ std::vector<GridPoint> read_pins(JsonReader& in, const ClothParams& cloth) {
 CollisionParams read_collision(JsonReader in) {
   CollisionParams c;
   c.threshold = in.positive("threshold", in.number("threshold", c.threshold));
-  c.stiffness = in.non_negative("stiffness", in.number("stiffness", c.stiffness));
+  in.at_most("threshold", c.threshold, limits::max_length);
+  c.stiffness = stiffness(in, "stiffness", in.number("stiffness", c.stiffness), false);
   const std::string model = in.string("model", "particle");
   if (model == "surface")
     c.model = CollisionModel::surface;
@@ -106,7 +128,9 @@ CollisionParams read_collision(JsonReader in) {
 
 ManipulationParams read_manipulation(JsonReader in, const ClothParams& cloth) {
   ManipulationParams m;
-  m.hold_threshold = in.positive("hold_threshold", in.number("hold_threshold", m.hold_threshold));
+  m.hold_threshold =
+      in.positive("hold_threshold", in.number("hold_threshold", m.hold_threshold));
+  in.at_most("hold_threshold", m.hold_threshold, limits::max_length);
   if (in.has("release")) {
     const auto& release = in.raw("release");
     if (release.is_string()) {
@@ -123,6 +147,7 @@ ManipulationParams read_manipulation(JsonReader in, const ClothParams& cloth) {
   m.attach_at_contact_distance =
       in.boolean("attach_at_contact_distance", m.attach_at_contact_distance);
   m.map_top = in.number("map_top", m.map_top);
+  in.within("map_top", m.map_top, limits::max_coordinate);
   m.map_direction = in.integer("map_direction", m.map_direction);
   if (m.map_direction != 1 && m.map_direction != -1)
     throw in.error("map_direction", "must be +1 or -1");
@@ -144,12 +169,29 @@ Perturbation read_perturbation(JsonReader in) {
   return p;
 }
 
-OutputOptions read_output(JsonReader in) {
+// An output interval: 0 (every step, or none) or long enough to advance time and to keep the
+// file within limits::max_output_rows.
+double output_interval(JsonReader& in, const std::string& key, double fallback, double duration,
+                       double rows_per_frame) {
+  const double interval = in.non_negative(key, in.number(key, fallback));
+  if (interval == 0.0) return interval;
+  if (interval < duration * limits::min_relative_step)
+    throw in.error(key, "too small to advance time over duration " +
+                            nlohmann::json(duration).dump() + " s (at least duration x 2^-50)");
+  const double rows = (duration / interval + 1.0) * rows_per_frame;
+  if (rows > limits::max_output_rows)
+    throw in.error(key, "would write " + nlohmann::json(rows).dump() +
+                            " rows (particles x frames), more than " +
+                            nlohmann::json(limits::max_output_rows).dump());
+  return interval;
+}
+
+OutputOptions read_output(JsonReader in, double duration, const ClothParams& cloth) {
   OutputOptions o;
-  o.energy_interval =
-      in.non_negative("energy_interval", in.number("energy_interval", o.energy_interval));
-  o.trace_interval = in.non_negative("trace_interval", in.number("trace_interval", 0.0));
-  o.vtk_interval = in.non_negative("vtk_interval", in.number("vtk_interval", 0.0));
+  const double particles = static_cast<double>(cloth.rows) * cloth.cols;
+  o.energy_interval = output_interval(in, "energy_interval", o.energy_interval, duration, 1.0);
+  o.trace_interval = output_interval(in, "trace_interval", 0.0, duration, particles);
+  o.vtk_interval = output_interval(in, "vtk_interval", 0.0, duration, particles);
   in.finish();
   return o;
 }
@@ -162,8 +204,7 @@ void apply_override(nlohmann::json& scene, const std::string& assignment) {
     throw InputError("--set", assignment, "expected key.path=value");
   const std::string path = assignment.substr(0, eq);
   const std::string text = assignment.substr(eq + 1);
-  nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
-  if (value.is_discarded()) value = text;
+  nlohmann::json value = try_parse_json_text(text, "--set", path).value_or(nlohmann::json(text));
 
   nlohmann::json* node = &scene;
   std::size_t start = 0;
@@ -193,6 +234,7 @@ Scene parse_scene(const nlohmann::json& source, const std::string& file,
   if (s.source["cloth"].contains("fabric")) fill_fabric_values(s.source["cloth"], s.cloth);
   s.pins = read_pins(in, s.cloth);
   s.forces.gravity = in.vec3("gravity", s.forces.gravity);
+  in.within("gravity", s.forces.gravity, limits::max_gravity);
   s.dummy = in.has("dummy") ? in.raw("dummy") : nlohmann::json{{"builtin", "dress-form"}};
   if (!s.dummy.is_null() && !s.dummy.is_object())
     throw in.error("dummy", "expected an object or null");
@@ -200,13 +242,16 @@ Scene parse_scene(const nlohmann::json& source, const std::string& file,
   s.integrator = in.raw("integrator");
   if (!s.integrator.is_object()) throw in.error("integrator", "expected an object");
   s.duration = in.non_negative("duration", in.number("duration"));
+  in.at_most("duration", s.duration, limits::max_duration);
   if (in.has("input")) {
     s.input = in.raw("input");
     if (!s.input.is_object()) throw in.error("input", "expected an object");
   }
   if (in.has("manipulation"))
     s.manipulation = read_manipulation(in.object("manipulation"), s.cloth);
-  if (in.has("output")) s.output = read_output(in.object("output"));
+  s.output = read_output(in.has("output") ? in.object("output")
+                                          : JsonReader(nlohmann::json::object(), file, "output"),
+                         s.duration, s.cloth);
   if (in.has("perturbation")) s.perturbation = read_perturbation(in.object("perturbation"));
   in.finish();
   return s;

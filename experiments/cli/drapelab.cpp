@@ -13,6 +13,7 @@
 #include "experiments/cli/fabrics_command.hpp"
 #include "experiments/cli/run_stats.hpp"
 #include "experiments/run/provenance.hpp"
+#include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "integrators/interface/registry.hpp"
 #include "experiments/viewer/view_command.hpp"
@@ -21,7 +22,8 @@
 namespace {
 
 int run_command(const std::string& scene_file, const std::string& out_dir,
-                const std::vector<std::string>& overrides, bool quiet) {
+                const std::vector<std::string>& overrides, bool quiet, bool overwrite) {
+  drape::check_run_folder(out_dir, overwrite);  // before anything is read or built
   const drape::Scene scene = drape::load_scene(scene_file, overrides);
   const drape::RunOutcome outcome = drape::run_scene(scene, out_dir);
   if (outcome.status != "ok")
@@ -74,6 +76,8 @@ int main(int argc, char** argv) {
       "      --set duration=1 --set output.vtk_interval=0.04   # ParaView: out/fig2/frames/\n"
       "  drapelab run experiments/scenes/combination4_hold_release_attach.json --out out/c4 \\\n"
       "      --set integrator.name=arkode-dirk --set integrator.dt=0.001");
+  bool overwrite = false;
+  run->add_flag("--overwrite", overwrite, "replace the run files of an earlier run in --out");
 
   app.add_subcommand("integrators", "list integrators and ARKODE tables with their orders")
       ->footer("Example:\n  drapelab integrators");
@@ -110,7 +114,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (run->parsed()) return run_command(scene_file, out_dir, overrides, quiet);
+    if (run->parsed()) return run_command(scene_file, out_dir, overrides, quiet, overwrite);
     if (fabrics->parsed()) return drape::list_fabrics(fabrics_json);
     if (convert->parsed()) return drape::convert_command(convert_in, convert_out);
     if (const int code = experiment_commands.dispatch(); code >= 0) return code;

@@ -39,8 +39,16 @@ void write_dummy_csv(const std::filesystem::path& file, const Dummy& dummy) {
 }
 
 void write_json(const std::filesystem::path& file, const nlohmann::json& value) {
-  std::ofstream out = open_for_writing(file);
-  out << value.dump(2) << "\n";
+  // Written under a temporary name and renamed: a reader (or a killed run) never leaves half a
+  // summary.json, whose presence marks a complete run folder (docs/outputs.md).
+  std::filesystem::path tmp = file;
+  tmp += ".tmp";
+  {
+    std::ofstream out = open_for_writing(tmp);
+    out << value.dump(2) << "\n";
+    if (!out.flush()) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  std::filesystem::rename(tmp, file);
 }
 
 }  // namespace drape

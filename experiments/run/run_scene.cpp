@@ -5,6 +5,7 @@
 #include "experiments/run/frame_recorder.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_files.hpp"
+#include "experiments/run/run_folder.hpp"
 #include "experiments/run/scene_simulation.hpp"
 #include "experiments/run/series_writers.hpp"
 
@@ -68,7 +69,8 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
   Simulation& simulation = run.simulation();
   const ClothSystem& system = run.system();
 
-  std::filesystem::create_directories(out_dir);
+  // Built (and so validated) first; then no file of an earlier run may stay beside this one's.
+  clear_run_folder(out_dir);
   if (system.dummy()) write_dummy_csv(out_dir / "dummy.csv", *system.dummy());
   EnergyWriter energy(out_dir / "energy.csv", scene.output.energy_interval, scene.duration);
   simulation.add_observer(energy);
@@ -85,7 +87,7 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
   nlohmann::json summary = run_summary(run, energy);
   summary.update(provenance);
   if (status.status == "ok") write_state_csv(out_dir / "state.csv", system, simulation.state());
-  write_json(out_dir / "summary.json", summary);
+  write_json(out_dir / "summary.json", summary);  // last: the folder is complete from here
   const int code = status.status == "ok" ? exit_ok : exit_diverged;
   return {status.status, status.reason, code, std::move(summary)};
 }

@@ -2,6 +2,7 @@
 
 #include "core/dummy/dummy_sources.hpp"
 #include "experiments/run/initial_perturbation.hpp"
+#include "experiments/run/run_limits.hpp"
 #include "integrators/interface/registry.hpp"
 
 namespace drape {
@@ -9,6 +10,7 @@ namespace drape {
 SceneSimulation::SceneSimulation(const Scene& scene)
     : m_scene(scene),
       m_options(read_integrator_options(scene.integrator, scene.file, "integrator")) {
+  check_run_limits(scene, m_options);
   std::shared_ptr<const Dummy> dummy;
   if (!scene.dummy.is_null())
     dummy = std::make_shared<const Dummy>(make_dummy(scene.dummy, scene.file, "dummy", scene.base_dir));

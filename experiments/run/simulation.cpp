@@ -86,6 +86,10 @@ void Simulation::take_step() {
     return;
   }
   const double h = m_t - m_t0;
+  if (!(h > 0.0)) {  // the input checks rule this out; a loop that cannot advance must not spin
+    end("failed", fmt::format("a step from t = {} did not advance time", m_t0));
+    return;
+  }
   m_min_step = m_integrator.counters().steps == 1 ? h : std::min(m_min_step, h);
   m_max_step = std::max(m_max_step, h);
   const std::string why = m_divergence.reason(m_system, m_t, m_integrator.state());

@@ -12,6 +12,7 @@
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
+#include "core/scene/json_text.hpp"
 
 namespace drape {
 
@@ -175,7 +176,8 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
     throw in.error("scenes", "expected a non-empty list of scene files");
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     const std::string field = fmt::format("scenes[{}]", k);
-    if (!scenes[k].is_string()) throw in.error(field, "expected a file name, got " + scenes[k].dump());
+    if (!scenes[k].is_string())
+      throw in.error(field, "expected a file name, got " + quote_json(scenes[k]));
     const std::string name = scenes[k].get<std::string>();
     const std::filesystem::path path = base_dir / name;
     if (!std::filesystem::is_regular_file(path))
@@ -229,7 +231,7 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
       const auto& known = known_metrics();
       if (!metrics[k].is_string() ||
           std::find(known.begin(), known.end(), metrics[k].get<std::string>()) == known.end())
-        throw in.error(field, fmt::format("unknown metric {} (known: {})", metrics[k].dump(),
+        throw in.error(field, fmt::format("unknown metric {} (known: {})", quote_json(metrics[k]),
                                           fmt::join(known, ", ")));
       e.metrics.push_back(metrics[k].get<std::string>());
     }

@@ -2,6 +2,7 @@
 
 #include "core/scene/json_reader.hpp"
 #include "integrators/arkode/butcher_tableau.hpp"
+#include "core/scene/scene_limits.hpp"
 #include "integrators/interface/registry.hpp"
 
 namespace drape {
@@ -87,7 +88,7 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
       "linear_tolerance", in.number("linear_tolerance", default_linear_tolerance(o.name)));
   o.max_linear_iters = in.integer("max_linear_iters", o.max_linear_iters);
   if (o.max_linear_iters < 1) throw in.error("max_linear_iters", "must be at least 1");
-  o.max_steps = static_cast<long>(in.positive("max_steps", in.number("max_steps", 1e8)));
+  o.max_steps = static_cast<long>(in.integer_in("max_steps", 1, limits::max_steps, o.max_steps));
   in.finish();
   reject_unused_keys(in, o);
   validate_integrator_choice(o, file, path);

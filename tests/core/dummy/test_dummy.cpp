@@ -233,5 +233,25 @@ TEST(Dummy, NearestWithinRejectsNonPositiveRadius) {
   EXPECT_EQ(on.distance, 0.0);
 }
 
+TEST(Dummy, NonFinitePointsHaveNoContact) {
+  // A diverging run hands NaN and inf to every query before its step ends: none may become an
+  // array index (a NaN angle used to pick a radius column).
+  const Dummy dummy(irregular_sections(50, 20, 12));
+  const double nan = std::nan(""), inf = INFINITY;
+  for (const Vec3& p : {Vec3(nan, 1.2, 0.0), Vec3(0.0, nan, 0.0), Vec3(0.0, 1.2, nan),
+                        Vec3(inf, 1.2, 0.0), Vec3(0.0, -inf, 0.0), Vec3(nan, nan, nan)}) {
+    EXPECT_EQ(dummy.nearest_within(p, 0.1).index, -1);
+    EXPECT_EQ(dummy.nearest(p).index, -1);
+    EXPECT_FALSE(dummy.inside(p));
+    EXPECT_FALSE(dummy.surface_gap(p).has_value());
+    EXPECT_EQ(dummy.outside_margin(p), 0.0);
+    std::vector<int> near;
+    dummy.particles_within(p, 0.1, near);
+    EXPECT_TRUE(near.empty());
+  }
+  EXPECT_TRUE(std::isfinite(dummy.surface_radius(1.2, nan)));
+  EXPECT_TRUE(std::isfinite(dummy.surface_radius(nan, 0.3)));
+}
+
 }  // namespace
 }  // namespace drape

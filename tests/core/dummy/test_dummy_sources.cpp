@@ -187,7 +187,7 @@ TEST_F(SectionsFile, BadFilesNameTheSceneFieldAndTheFileField) {
   write("extra.json", R"({"sections": [{"y": 1.0, "radii": [0.1, 0.1, 0.1], "r": 1},
                                       {"y": 0.5, "radii": [0.1, 0.1, 0.1]}]})");
   const std::pair<const char*, const char*> cases[] = {
-      {"missing.json", "cannot open"},
+      {"missing.json", "no such file"},
       {"not_json.json", "not valid JSON"},
       {"one.json", "sections: expected an array of at least 2"},
       {"ragged.json", "sections[1].radii: expected 3 radii"},

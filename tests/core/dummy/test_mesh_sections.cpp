@@ -239,6 +239,8 @@ TEST_F(MeshSections, BadInputNamesTheSceneFieldAndTheMeshFile) {
   write("garbage.obj", "this is not\n an OBJ file \x01\x02\n");
   write("bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
   write("no_faces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  write("nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+  write("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 1e999\nf 1 2 3\n");
   // One vertical wall: every slice is a single segment enclosing nothing.
   write("wall.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
   // A U-shaped channel open towards +x: its area centroid lies in the hollow, and the ray from
@@ -257,6 +259,10 @@ TEST_F(MeshSections, BadInputNamesTheSceneFieldAndTheMeshFile) {
   expect_input_error({{"mesh", "missing.obj"}}, "dummy.mesh", "missing.obj: cannot open");
   expect_input_error({{"mesh", "garbage.obj"}}, "dummy.mesh", "garbage.obj: ");
   expect_input_error({{"mesh", "no_faces.obj"}}, "dummy.mesh", "no_faces.obj: the OBJ file has");
+  expect_input_error({{"mesh", "nan.obj"}}, "dummy.mesh",
+                     "nan.obj: line 3: vertex coordinate \"nan\" is not a finite number");
+  expect_input_error({{"mesh", "inf.obj"}}, "dummy.mesh",
+                     "inf.obj: line 3: vertex coordinate \"1e999\" is not a finite number");
   expect_input_error({{"mesh", "bad_index.obj"}}, "dummy.mesh", "bad_index.obj: ");
   expect_input_error({{"mesh", "wall.obj"}}, "dummy.mesh", "no surface encloses a centre");
   expect_input_error({{"mesh", "channel.obj"}, {"points", 4}}, "dummy.mesh",

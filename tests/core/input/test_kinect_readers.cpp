@@ -169,6 +169,20 @@ std::string ntu_text() {
          "1\n" + ntu_body(other, Vec3(8, 8, 8), Vec3(8, 8, 8));
 }
 
+TEST(KinectV2Csv, TimestampsWhoseDifferenceOverflowsAreInputErrors) {
+  // Subtracting the first tick would overflow 64 bits (undefined behaviour).
+  const std::string file =
+      write_file(test_dir(), "overflow.csv",
+                 csv_line("-9223372036854775807", {}) + csv_line("9223372036854775807", {}));
+  try {
+    read_kinect_v2_csv(file);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              file + ": line 2: timestamp: too far from the first frame's (the difference overflows 64 bits)");
+  }
+}
+
 TEST(NtuSkeleton, SyntheticFileFollowsTheFirstPerson) {
   const auto dir = test_dir();
   const Recording r = read_ntu_skeleton(write_file(dir, "synthetic.skeleton", ntu_text()));

@@ -41,11 +41,54 @@ TEST(JsonReader, ErrorsNameFileAndFullPath) {
 
 TEST(JsonReader, MissingAndBrokenFilesNameTheFile) {
   EXPECT_EQ(input_error_message([] { read_json_file("/nonexistent/scene.json"); }),
-            "/nonexistent/scene.json: cannot open file");
+            "/nonexistent/scene.json: no such file");
   const std::string broken = ::testing::TempDir() + "broken.json";
   std::ofstream(broken) << "{\"cloth\": [1, 2";
   EXPECT_NE(input_error_message([&] { read_json_file(broken); }).find(broken + ": not valid JSON"),
             std::string::npos);
+}
+
+TEST(JsonReader, IntegerInChecksTypeAndRangeIn64Bits) {
+  const nlohmann::json j = {{"half", 0.5},      {"huge", 1e300},     {"wrap", 4294967296LL},
+                            {"float_form", 1e8}, {"negative", -1},   {"big", 18446744073709551615ULL}};
+  JsonReader in(j, "f.json", "integrator");
+  EXPECT_EQ(input_error_message([&] { in.integer_in("half", 1, 1000); }),
+            "f.json: integrator.half: expected an integer, got 0.5");
+  EXPECT_EQ(input_error_message([&] { in.integer_in("huge", 1, 1000); }),
+            "f.json: integrator.huge: must be an integer from 1 to 1000, got 1e+300");
+  EXPECT_EQ(input_error_message([&] { in.integer_in("big", 1, 1000); }),
+            "f.json: integrator.big: must be an integer from 1 to 1000, got 18446744073709551615");
+  EXPECT_EQ(input_error_message([&] { in.integer("wrap"); }),
+            "f.json: integrator.wrap: integer out of range: 4294967296");
+  EXPECT_EQ(input_error_message([&] { in.integer_in("negative", 1, 1000); }),
+            "f.json: integrator.negative: must be an integer from 1 to 1000, got -1");
+  EXPECT_EQ(in.integer_in("float_form", 1, 1'000'000'000), 100'000'000);
+  EXPECT_EQ(in.integer_in("absent", 1, 10, 7), 7);
+}
+
+TEST(JsonReader, BoundsNameTheField) {
+  const nlohmann::json j = {{"k", 1e308}, {"o", {0.0, 2e6, 0.0}}};
+  JsonReader in(j, "f.json", "cloth");
+  EXPECT_EQ(input_error_message([&] { in.at_most("k", in.number("k"), 1e12); }),
+            "f.json: cloth.k: must be at most 1000000000000.0, got 1e+308");
+  EXPECT_EQ(input_error_message([&] { in.within("o", in.vec3("o"), 1e6); }),
+            "f.json: cloth.o: must be within +-1000000.0");
+}
+
+TEST(JsonReader, LongWrongTypedValuesAreShortenedInMessages) {
+  const nlohmann::json j = {{"name", std::vector<int>(10'000'000, 7)}};
+  JsonReader in(j, "f.json", "integrator");
+  const std::string message = input_error_message([&] { in.string("name"); });
+  EXPECT_EQ(message.rfind("f.json: integrator.name: expected a string, got [7, 7, ", 0), 0u);
+  EXPECT_LE(message.size(), 300u);
+  EXPECT_EQ(message.substr(message.size() - 3), "...");
+}
+
+TEST(JsonReader, DirectoriesAndDevicesAreNotReadAsFiles) {
+  EXPECT_EQ(input_error_message([] { read_json_file("/tmp"); }),
+            "/tmp: is a directory, not a file");
+  EXPECT_EQ(input_error_message([] { read_json_file("/dev/zero"); }),
+            "/dev/zero: not a regular file");
 }
 
 }  // namespace

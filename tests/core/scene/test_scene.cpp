@@ -23,9 +23,10 @@ std::string error_for(const nlohmann::json& scene) {
   return testing::input_error_message([&] { parse_scene(scene, "scene.json", "."); });
 }
 
-nlohmann::json with(const std::string& assignment) {
+nlohmann::json with(const std::string& assignment, const std::string& second = "") {
   nlohmann::json scene = valid_scene();
   apply_override(scene, assignment);
+  if (!second.empty()) apply_override(scene, second);
   return scene;
 }
 
@@ -77,7 +78,8 @@ TEST(Scene, OutOfRangeValues) {
   EXPECT_EQ(error_for(with("cloth.spacing=0")), "scene.json: cloth.spacing: must be positive, got 0.0");
   EXPECT_EQ(error_for(with("cloth.particle_mass=-1")),
             "scene.json: cloth.particle_mass: must be positive, got -1.0");
-  EXPECT_EQ(error_for(with("cloth.rows=0")), "scene.json: cloth.rows: must be at least 1");
+  EXPECT_EQ(error_for(with("cloth.rows=0")),
+            "scene.json: cloth.rows: must be an integer from 1 to 4000000, got 0");
   EXPECT_EQ(error_for(with("cloth.k_shear=-2")),
             "scene.json: cloth.k_shear: must not be negative, got -2.0");
   EXPECT_EQ(error_for(with("duration=-1")), "scene.json: duration: must not be negative, got -1.0");
@@ -89,6 +91,57 @@ TEST(Scene, PinsOffTheGrid) {
   EXPECT_EQ(error_for(with("pins=[[0, 0], [4, 0]]")),
             "scene.json: pins[1]: [4, 0] is off the 4 x 5 grid");
   EXPECT_EQ(error_for(with("pins=[[0]]")), "scene.json: pins[0]: expected [row, col] integers, got [0]");
+}
+
+TEST(SceneLimits, ClothSizeIsCountedIn64BitsAndBounded) {
+  // 46341^2 overflows an int; 20000^2 fits one but not in memory.
+  EXPECT_EQ(error_for(with("cloth.rows=46341", "cloth.cols=46341")),
+            "scene.json: cloth.cols: rows x cols = 2147488281 particles, more than the limit 4000000");
+  EXPECT_EQ(error_for(with("cloth.rows=20000", "cloth.cols=20000")),
+            "scene.json: cloth.cols: rows x cols = 400000000 particles, more than the limit 4000000");
+  EXPECT_EQ(error_for(with("cloth.rows=4294967297")),
+            "scene.json: cloth.rows: must be an integer from 1 to 4000000, got 4294967297");
+  EXPECT_EQ(error_for(with("cloth.rows=2.5")), "scene.json: cloth.rows: expected an integer, got 2.5");
+}
+
+TEST(SceneLimits, PinsAreComparedBeforeNarrowing) {
+  EXPECT_EQ(error_for(with("pins=[[4294967296, 0]]")),
+            "scene.json: pins[0]: [4294967296, 0] is off the 4 x 5 grid");
+  EXPECT_EQ(error_for(with("manipulation.release=[0, 18446744073709551615]")),
+            "scene.json: manipulation.release: expected [row, col] integers, got [0, "
+            "18446744073709551615]");
+}
+
+TEST(SceneLimits, ValuesWhoseProductsOverflowAreRefused) {
+  EXPECT_EQ(error_for(with("cloth.k_structural=1e308")),
+            "scene.json: cloth.k_structural: must be at most 1000000000000.0, got 1e+308");
+  EXPECT_EQ(error_for(with("cloth.spacing=1e308")),
+            "scene.json: cloth.spacing: must be at most 1000.0, got 1e+308");
+  EXPECT_EQ(error_for(with("collision.stiffness=1e300")),
+            "scene.json: collision.stiffness: must be at most 1000000000000.0, got 1e+300");
+  EXPECT_EQ(error_for(with("cloth.origin=[0, 1e300, 0]")),
+            "scene.json: cloth.origin: must be within +-1000000.0");
+  EXPECT_EQ(error_for(with("gravity=[0, -1e200, 0]")),
+            "scene.json: gravity: must be within +-1000.0");
+  EXPECT_EQ(error_for(with("duration=1e300")),
+            "scene.json: duration: must be at most 1000000.0, got 1e+300");
+}
+
+TEST(SceneLimits, OutputIntervalsMustAdvanceTimeAndBoundTheFiles) {
+  EXPECT_EQ(error_for(with("output.energy_interval=1e-300")),
+            "scene.json: output.energy_interval: too small to advance time over duration 0.5 s "
+            "(at least duration x 2^-50)");
+  EXPECT_EQ(error_for(with("output.trace_interval=1e-8")),
+            "scene.json: output.trace_interval: would write 1000000020.0 rows (particles x "
+            "frames), more than 1000000000.0");
+  EXPECT_EQ(error_for(with("output.vtk_interval=0")), "no error");
+}
+
+TEST(SceneLimits, HugeOverrideValuesAreShortenedInTheMessage) {
+  const std::string message =
+      error_for(with("cloth.rows=\"" + std::string(50'000'000, 'x') + "\""));
+  EXPECT_EQ(message.rfind("scene.json: cloth.rows: expected an integer, got \"xxx", 0), 0u);
+  EXPECT_LT(message.size(), 300u);
 }
 
 TEST(Scene, DirectionsMustBeOrthogonalUnitVectors) {

@@ -114,7 +114,7 @@ TEST(DrapelabRun, SetOverridesAreValidatedLikeTheFile) {
 TEST(DrapelabRun, MissingFileAndBadUsageExitWithTwo) {
   Result r = drapelab("run /nonexistent/scene.json --out /tmp/unused");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("/nonexistent/scene.json: cannot open file"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/nonexistent/scene.json: no such file"), std::string::npos) << r.err;
   EXPECT_EQ(drapelab("run").exit_code, 2);
   EXPECT_EQ(drapelab("frobnicate").exit_code, 2);
 }
@@ -170,6 +170,126 @@ TEST(DrapelabRun, CombinationRunsUnderAnImplicitIntegrator) {
   for (const auto& e : summary["events"]) types.push_back(e["type"]);
   EXPECT_EQ(types, (std::vector<std::string>{"hold", "release", "attach", "attach_fixed"}));
   EXPECT_EQ(summary["counters"]["resets"], 4) << "restarted at each event";
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / name;
+  fs::remove_all(dir);
+  return dir;
+}
+
+// Finite but huge: the cloth explodes in its first steps and NaN reaches the dummy's queries.
+nlohmann::json exploding_cloth(const std::string& collision_model) {
+  nlohmann::json scene = hanging_cloth();
+  scene["cloth"]["k_structural"] = 1e12;
+  scene["cloth"]["particle_mass"] = 1e-9;
+  scene["integrator"]["dt"] = 0.01;
+  scene["duration"] = 1.0;
+  scene["dummy"] = {{"builtin", "cylinder"}, {"radius", 0.05}, {"center", {0.05, 0.15}},
+                    {"y_top", 1.45}, {"y_bottom", 1.2}};
+  scene["collision"] = {{"model", collision_model}, {"threshold", 0.01}};
+  return scene;
+}
+
+TEST(DrapelabHarden, ExplodingRunEndsDivergedWithItsSummary) {
+  for (const std::string model : {"particle", "surface"}) {
+    const fs::path out = fresh_dir("run_exploding_" + model);
+    const Result r = drapelab("run " + write_scene("boom.json", exploding_cloth(model)).string() +
+                              " --out " + out.string());
+    ASSERT_EQ(r.exit_code, 3) << model << ": " << r.err;
+    const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+    EXPECT_EQ(summary["status"], "diverged") << model;
+    EXPECT_FALSE(fs::exists(out / "summary.json.tmp"));
+  }
+}
+
+TEST(DrapelabHarden, HugeAndNonIntegerValuesExitWithTwoNamingTheField) {
+  const std::string scene = write_scene("huge.json", hanging_cloth()).string();
+  const struct {
+    std::string set, message;
+  } cases[] = {
+      {"cloth.k_structural=1e308", "huge.json: cloth.k_structural: must be at most"},
+      {"cloth.spacing=1e308", "huge.json: cloth.spacing: must be at most 1000.0"},
+      {"'pins=[[4294967296,0]]'", "huge.json: pins[0]: [4294967296, 0] is off the 6 x 6 grid"},
+      {"integrator.max_steps=0.5", "huge.json: integrator.max_steps: expected an integer, got 0.5"},
+      {"integrator.max_steps=1e300", "huge.json: integrator.max_steps: must be an integer from 1"},
+      {"cloth.rows=46341 --set cloth.cols=46341", "huge.json: cloth.cols: rows x cols = 2147488281"},
+      {"cloth.rows=4294967297", "huge.json: cloth.rows: must be an integer from 1 to 4000000"},
+      {"cloth.rows=20000 --set cloth.cols=20000", "huge.json: cloth.cols: rows x cols = 400000000"},
+      {"integrator.dt=1e-300", "huge.json: integrator.dt: too small to advance time"},
+      {"output.energy_interval=1e-300", "huge.json: output.energy_interval: too small to advance"},
+  };
+  for (const auto& c : cases) {
+    const fs::path out = fresh_dir("run_huge");
+    const Result r = drapelab("run " + scene + " --out " + out.string() + " --set " + c.set);
+    EXPECT_EQ(r.exit_code, 2) << c.set << ": " << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.set << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << "nothing is written for bad input";
+  }
+}
+
+TEST(DrapelabHarden, DeepJsonAndNonFilesAreInputErrors) {
+  const fs::path dir = fresh_dir("run_inputs");
+  fs::create_directories(dir / "a_folder");
+  std::ofstream(dir / "deep.json") << std::string(100000, '[') << std::string(100000, ']');
+  Result r = drapelab("run " + (dir / "deep.json").string() + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("deep.json: not accepted JSON: nested deeper than 64 levels"), std::string::npos) << r.err;
+  r = drapelab("run " + (dir / "a_folder").string() + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("a_folder: is a directory, not a file"), std::string::npos) << r.err;
+  for (const std::string& recording : {(dir / "a_folder").string(), std::string("/dev/zero")}) {
+    nlohmann::json scene = hanging_cloth();
+    scene["input"] = {{"recording", recording}};
+    r = drapelab("run " + write_scene("rec.json", scene).string() + " --out " + (dir / "o").string());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("rec.json: input.recording: " + recording + ": "), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("no such file"), std::string::npos) << r.err;
+  }
+  std::ofstream(dir / "deep.jsonl") << "{\"format\": \"drapelab-recording\", \"version\": 1}\n"
+                                    << std::string(100000, '[') << "\n";
+  nlohmann::json scene = hanging_cloth();
+  scene["input"] = {{"recording", (dir / "deep.jsonl").string()}};
+  r = drapelab("run " + write_scene("rec.json", scene).string() + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("deep.jsonl: line 2: not accepted JSON"), std::string::npos) << r.err;
+}
+
+TEST(DrapelabHarden, OutProblemsExitWithTwoBeforeTheModelIsBuilt) {
+  const fs::path dir = fresh_dir("run_out_problems");
+  fs::create_directories(dir);
+  std::ofstream(dir / "a_file") << "x";
+  const std::string scene = write_scene("out.json", hanging_cloth()).string();
+  Result r = drapelab("run " + scene + " --out " + (dir / "a_file").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("a_file: --out: exists and is not a folder"), std::string::npos) << r.err;
+  r = drapelab("run " + scene + " --out " + (dir / "a_file" / "sub").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--out: cannot be created"), std::string::npos) << r.err;
+}
+
+TEST(DrapelabHarden, AReusedFolderNeedsOverwriteWhichClearsTheOldRun) {
+  const fs::path out = fresh_dir("run_reused");
+  const std::string ok = write_scene("reuse_ok.json", hanging_cloth()).string();
+  ASSERT_EQ(drapelab("run " + ok + " --out " + out.string()).exit_code, 0);
+  std::ofstream(out / "notes.txt") << "mine";
+  Result r = drapelab("run " + ok + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(out.string() + ": --out: holds another run's files (summary.json, "
+                                      "energy.csv, state.csv); pass --overwrite"),
+            std::string::npos)
+      << r.err;
+  // A diverging rerun must not leave the old state.csv beside its new summary.
+  nlohmann::json diverging = hanging_cloth();
+  diverging["cloth"]["k_structural"] = 2000;
+  diverging["integrator"]["dt"] = 0.005;
+  diverging["duration"] = 5.0;
+  r = drapelab("run " + write_scene("reuse_div.json", diverging).string() + " --out " +
+               out.string() + " --overwrite");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(read_text(out / "summary.json"))["status"], "diverged");
+  EXPECT_FALSE(fs::exists(out / "state.csv"));
+  EXPECT_TRUE(fs::exists(out / "notes.txt")) << "only run files are cleared";
 }
 
 TEST(Readme, TestCommandIsWhatCiRuns) {

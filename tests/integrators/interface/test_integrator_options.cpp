@@ -40,6 +40,21 @@ TEST(IntegratorOptions, StepHalvingsDefaultToTenAndAreBounded) {
   }
 }
 
+TEST(IntegratorOptions, MaxStepsIsACheckedInteger) {
+  nlohmann::json o = {{"name", "leapfrog"}, {"dt", 1e-3}};
+  EXPECT_EQ(read_integrator_options(o, "scene.json", "integrator").max_steps, 100'000'000);
+  o["max_steps"] = 1e8;  // the form scenes wrote when it was read as a number
+  EXPECT_EQ(read_integrator_options(o, "scene.json", "integrator").max_steps, 100'000'000);
+  o["max_steps"] = 0.5;
+  EXPECT_EQ(error_of(o), "scene.json: integrator.max_steps: expected an integer, got 0.5");
+  o["max_steps"] = 1e300;
+  EXPECT_EQ(error_of(o), "scene.json: integrator.max_steps: must be an integer from 1 to "
+                         "1000000000000, got 1e+300");
+  o["max_steps"] = 0;
+  EXPECT_EQ(error_of(o), "scene.json: integrator.max_steps: must be an integer from 1 to "
+                         "1000000000000, got 0");
+}
+
 // A key that the chosen integrator would ignore is an error naming it, like an unknown key.
 TEST(IntegratorOptions, KeysTheIntegratorDoesNotReadAreRejected) {
   const struct {

@@ -1,0 +1,34 @@
+#pragma once
+// JSON text in and out with bounds (docs/scene.md, Limits): parsing refuses nesting deeper than
+// max_json_depth, so no input can exhaust the stack of nlohmann's recursive parser, printer or
+// destructor; messages quote values shortened, so a huge wrong-typed value is not printed whole.
+#include <cstddef>
+#include <istream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "core/scene/input_error.hpp"
+
+namespace drape {
+
+/// The deepest nesting of arrays and objects any input may have.
+constexpr int max_json_depth = 64;
+/// The longest quoted value in a message, in characters, "..." included.
+constexpr std::size_t max_quoted_chars = 200;
+
+/// Parses JSON text; throws InputError(file, field, ...) when it is not valid JSON or nests
+/// deeper than max_json_depth.
+nlohmann::json parse_json_text(const std::string& text, const std::string& file,
+                               const std::string& field = "");
+/// Parses `text` when it is valid JSON (nothing when it is not); throws InputError(file, field)
+/// only when it nests deeper than max_json_depth.
+std::optional<nlohmann::json> try_parse_json_text(const std::string& text, const std::string& file,
+                                                  const std::string& field);
+/// The same for a stream (a whole file).
+nlohmann::json parse_json_stream(std::istream& in, const std::string& file);
+/// `value` printed for a message: nesting below a few levels as "...", at most
+/// max_quoted_chars characters.
+std::string quote_json(const nlohmann::json& value);
+
+}  // namespace drape

@@ -1,0 +1,33 @@
+#pragma once
+// The bounds every scene value is checked against before anything is built (docs/scene.md,
+// Limits). They are physically generous: no draping scene comes near them, and below them no
+// product the model forms (k * length, m * g * height, rows * cols, duration / dt) overflows a
+// double or a 64-bit count, so a run either works or ends `diverged` with its summary.
+#include <cstdint>
+
+namespace drape::limits {
+
+/// Cloth particles, rows x cols (computed in 64 bits): 4 million, about 1 GB of state and springs.
+constexpr std::int64_t max_cloth_particles = 4'000'000;
+/// Lengths: cloth spacing, collision threshold, hold threshold, dummy radius [m].
+constexpr double max_length = 1e3;
+/// Coordinates of positions given in a scene (cloth origin, map_top, dummy heights) [m].
+constexpr double max_coordinate = 1e6;
+/// Spring and collision stiffness [N/m] and damping coefficients [N s/m].
+constexpr double max_stiffness = 1e12;
+/// Particle mass [kg].
+constexpr double max_mass = 1e6;
+/// Length of the gravity vector [m/s^2].
+constexpr double max_gravity = 1e3;
+/// Simulated time [s].
+constexpr double max_duration = 1e6;
+/// Rows of an output file implied by an interval: rows per frame x frames (trace.csv, frames/),
+/// or frames (energy.csv, hands.csv).
+constexpr double max_output_rows = 1e9;
+/// A step or an interval shorter than duration x this cannot advance time near the end of the
+/// run (t + dt == t once dt < t 2^-53): refused as input instead of looping for ever.
+constexpr double min_relative_step = 0x1p-50;
+/// integrator.max_steps.
+constexpr std::int64_t max_steps = 1'000'000'000'000;
+
+}  // namespace drape::limits

@@ -1,0 +1,83 @@
+#include "experiments/run/run_folder.hpp"
+
+#include <unistd.h>
+
+#include <string>
+#include <utility>
+
+#include "core/scene/input_error.hpp"
+
+namespace drape {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+InputError folder_error(const fs::path& dir, const std::string& message) {
+  return InputError(dir.string(), "--out", message);
+}
+
+bool writable_folder(const fs::path& dir) {
+  return ::access(dir.c_str(), W_OK | X_OK) == 0;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+}  // namespace
+
+const std::vector<std::string>& run_file_names() {
+  // summary.json first: clearing removes the mark of a complete folder before anything else.
+  static const std::vector<std::string> names = {
+      "summary.json", "summary.json.tmp", "energy.csv", "state.csv", "dummy.csv",
+      "hands.csv",    "trace.csv",        "frames"};
+  return names;
+}
+
+std::vector<std::string> run_files_in(const fs::path& dir) {
+  std::vector<std::string> present;
+  std::error_code ec;
+  for (const auto& name : run_file_names())
+    if (fs::exists(fs::symlink_status(dir / name, ec))) present.push_back(name);
+  return present;
+}
+
+void check_run_folder(const fs::path& dir, bool overwrite) {
+  std::error_code ec;
+  const auto status = fs::status(dir, ec);
+  if (fs::exists(status)) {
+    if (!fs::is_directory(status)) throw folder_error(dir, "exists and is not a folder");
+    if (!writable_folder(dir)) throw folder_error(dir, "the folder is not writable");
+    const auto present = run_files_in(dir);
+    if (!present.empty() && !overwrite)
+      throw folder_error(dir, "holds another run's files (" + joined(present) +
+                                  "); pass --overwrite to replace them, or choose another folder");
+    return;
+  }
+  // The nearest existing ancestor must be a folder we may create entries in.
+  fs::path target = fs::absolute(dir, ec).lexically_normal();
+  if (!target.has_filename()) target = target.parent_path();  // "out/"
+  fs::path parent = target.parent_path();
+  while (!parent.empty() && !fs::exists(fs::status(parent, ec)) && parent != parent.root_path())
+    parent = parent.parent_path();
+  if (!fs::is_directory(fs::status(parent, ec)))
+    throw folder_error(dir, "cannot be created: " + parent.string() + " is not a folder");
+  if (!writable_folder(parent))
+    throw folder_error(dir, "cannot be created: " + parent.string() + " is not writable");
+  // Permissions do not tell everything (root, /proc, read-only mounts): create it and take it
+  // back, so the check still changes nothing.
+  fs::create_directories(dir, ec);
+  if (ec) throw folder_error(dir, "cannot be created: " + ec.message());
+  for (fs::path made = target; made != parent && made.has_relative_path();)
+    fs::remove(std::exchange(made, made.parent_path()), ec);
+}
+
+void clear_run_folder(const fs::path& dir) {
+  fs::create_directories(dir);
+  for (const auto& name : run_file_names()) fs::remove_all(dir / name);
+}
+
+}  // namespace drape

@@ -1,0 +1,22 @@
+#pragma once
+// The output folder of one run (docs/outputs.md, Run folders): which files are a run's, the
+// checks `drapelab run --out` makes before anything is built, and the clearing at the start of
+// a run, so that a folder never mixes two runs' files and is complete only once summary.json
+// exists.
+#include <filesystem>
+#include <vector>
+
+namespace drape {
+
+/// The names a run writes in its folder (files, and the frames/ folder).
+const std::vector<std::string>& run_file_names();
+/// The run files present in `dir` (empty when it does not exist).
+std::vector<std::string> run_files_in(const std::filesystem::path& dir);
+/// Throws InputError naming `dir` and --out when it cannot take a run: it is an existing file,
+/// its nearest existing parent is not a writable folder, or it holds another run's files and
+/// `overwrite` is false. Changes nothing.
+void check_run_folder(const std::filesystem::path& dir, bool overwrite);
+/// Creates `dir` and removes every run file in it (nothing else), summary.json first.
+void clear_run_folder(const std::filesystem::path& dir);
+
+}  // namespace drape

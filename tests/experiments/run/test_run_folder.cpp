@@ -1,0 +1,89 @@
+// A run folder never mixes two runs: --out checks, clearing, summary.json last (docs/outputs.md).
+#include "experiments/run/run_folder.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <fstream>
+
+#include "experiments/run/run_files.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace drape {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("run_folder_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::string check(const fs::path& dir, bool overwrite) {
+  return testing::input_error_message([&] { check_run_folder(dir, overwrite); });
+}
+
+TEST(RunFolder, NewAndEmptyFoldersAreAccepted) {
+  const fs::path dir = fresh("new");
+  EXPECT_EQ(check(dir / "a" / "b", false), "no error");
+  fs::create_directories(dir);
+  std::ofstream(dir / "notes.txt") << "mine";  // not a run file
+  EXPECT_EQ(check(dir, false), "no error");
+  EXPECT_FALSE(fs::exists(dir / "a")) << "checking creates nothing";
+}
+
+TEST(RunFolder, AnotherRunsFilesNeedOverwrite) {
+  const fs::path dir = fresh("stale");
+  fs::create_directories(dir / "frames");
+  std::ofstream(dir / "summary.json") << "{}";
+  std::ofstream(dir / "state.csv") << "old";
+  EXPECT_EQ(check(dir, false),
+            dir.string() + ": --out: holds another run's files (summary.json, state.csv, frames); "
+                           "pass --overwrite to replace them, or choose another folder");
+  EXPECT_EQ(check(dir, true), "no error");
+}
+
+TEST(RunFolder, AFileOrAnUnwritablePlaceIsRefused) {
+  const fs::path dir = fresh("file");
+  fs::create_directories(dir);
+  std::ofstream(dir / "taken") << "x";
+  EXPECT_EQ(check(dir / "taken", true), (dir / "taken").string() + ": --out: exists and is not a folder");
+  EXPECT_EQ(check(dir / "taken" / "sub", true),
+            (dir / "taken" / "sub").string() + ": --out: cannot be created: " +
+                (dir / "taken").string() + " is not a folder");
+  if (::geteuid() != 0) {  // root writes anywhere
+    fs::create_directories(dir / "locked");
+    fs::permissions(dir / "locked", fs::perms::owner_read | fs::perms::owner_exec);
+    EXPECT_EQ(check(dir / "locked" / "out", false),
+              (dir / "locked" / "out").string() + ": --out: cannot be created: " +
+                  (dir / "locked").string() + " is not writable");
+    fs::permissions(dir / "locked", fs::perms::owner_all);
+  }
+  EXPECT_EQ(check("/proc/drapelab_out", false).rfind("/proc/drapelab_out: --out: cannot be created", 0),
+            0u);
+}
+
+TEST(RunFolder, ClearingRemovesOnlyRunFiles) {
+  const fs::path dir = fresh("clear");
+  fs::create_directories(dir / "frames");
+  for (const char* name : {"summary.json", "energy.csv", "state.csv", "notes.txt", "run.json"})
+    std::ofstream(dir / name) << "old";
+  clear_run_folder(dir);
+  EXPECT_TRUE(run_files_in(dir).empty());
+  EXPECT_TRUE(fs::exists(dir / "notes.txt"));
+  EXPECT_TRUE(fs::exists(dir / "run.json")) << "the experiment runner's own file stays";
+}
+
+TEST(RunFolder, JsonIsWrittenUnderATemporaryNameThenRenamed) {
+  const fs::path dir = fresh("atomic");
+  fs::create_directories(dir);
+  std::ofstream(dir / "summary.json") << "{\"status\": \"old\"}";
+  write_json(dir / "summary.json", {{"status", "ok"}});
+  EXPECT_FALSE(fs::exists(dir / "summary.json.tmp"));
+  std::ifstream in(dir / "summary.json");
+  EXPECT_EQ(nlohmann::json::parse(in)["status"], "ok");
+}
+
+}  // namespace
+}  // namespace drape
