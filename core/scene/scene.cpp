@@ -35,6 +35,8 @@ void fill_fabric_values(nlohmann::json& cloth, const ClothParams& c) {
   cloth["k_structural"] = c.k_structural;
   cloth["k_shear"] = c.k_shear;
   cloth["k_bending"] = c.k_bending;
+}
+
 // Stiffness and damping: >= 0 (or > 0) and below the bound whose products stay finite.
 double stiffness(JsonReader& in, const std::string& key, double value, bool positive) {
   if (positive) in.positive(key, value);
