@@ -80,7 +80,7 @@ TEST(FabricsCommand, SummaryHoldsTheDerivedValues) {
   const fs::path file = temp("knit.json"), dir = temp("knit_out");
   std::ofstream(file) << knit_scene().dump();
   std::string out;
-  ASSERT_EQ(drapelab("run " + file.string() + " --quiet --out " + dir.string(), out,
+  ASSERT_EQ(drapelab("run " + file.string() + " --quiet --overwrite --out " + dir.string(), out,
                      temp("knit_err.txt")), 0);
   const auto summary = nlohmann::json::parse(read_text(dir / "summary.json"));
   const auto& cloth = summary["scene"]["cloth"];

@@ -49,7 +49,7 @@ TEST(Provenance, SummaryJsonCarriesIt) {
   std::ofstream(scene) << R"({"cloth": {"rows": 3, "cols": 3, "spacing": 0.02,
     "origin": [0, 1.4, 0], "particle_mass": 0.001, "k_structural": 20}, "pins": [[0, 0]],
     "dummy": null, "integrator": {"name": "leapfrog", "dt": 0.001}, "duration": 0.01})";
-  const auto r = drape::testing::run_drapelab("run " + scene + " --out " + dir + " --quiet");
+  const auto r = drape::testing::run_drapelab("run " + scene + " --out " + dir + " --quiet --overwrite");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto summary = nlohmann::json::parse(drape::testing::read_text(dir + "/summary.json"));
   const auto b = drape::build_provenance();
