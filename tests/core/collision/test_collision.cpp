@@ -1,6 +1,5 @@
 // The cached collision query equals the grid query exactly, however the particles move.
 #include <gtest/gtest.h>
-
 #include <random>
 
 #include "core/collision/collision.hpp"
