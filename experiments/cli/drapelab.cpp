@@ -102,6 +102,10 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    // A subcommand that runs inside the parse (view, live) ends with its own status: 0, 2 for
+    // bad input, 3 for a run that diverged or failed.
+    return e.get_exit_code();
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() != 0) {
       if (const auto hint = drape::did_you_mean(app, std::vector<std::string>(argv + 1, argv + argc))) {
