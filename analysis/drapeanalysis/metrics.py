@@ -49,9 +49,12 @@ def vibration_window(trace, t0, t1, cutoff_hz, hands=None):
     per particle-second, and the hand jitter."""
     frames = (trace["t"] >= t0 - 1e-12) & (trace["t"] <= t1 + 1e-12)
     times = trace["t"][frames]
-    free = ~trace["fixed"][frames].any(axis=0)
     out = {"window_start": t0, "window_end": t1, "frames": int(frames.sum())}
-    if frames.sum() < 3 or not free.any():
+    if frames.sum() < 3:
+        return out
+    out["sample_hz"] = (len(times) - 1) / max(times[-1] - times[0], 1e-300)
+    free = ~trace["fixed"][frames].any(axis=0)
+    if not free.any():
         return out
     x = trace["x"][frames][:, free]
     v = trace["v"][frames][:, free]
@@ -83,23 +86,28 @@ def hand_jitter(hands, t0, t1, cutoff_hz):
 
 def vibration(run, summary, window=VIBRATION_WINDOW):
     """Vibration after every event (to the next event or `window` seconds) and over the last
-    `window` seconds of the run, from trace.csv, above the cutoff derived from the run's scene;
-    empty without a trace."""
-    if not (run / "trace.csv").exists():
+    `window` seconds of the run, above the cutoff derived from the run's scene. The windows after
+    events come from event_trace/ when the run wrote one (a fixed fine rate), else from
+    trace.csv; the last window and the steady holding from trace.csv. Empty without either."""
+    coarse_file, fine = run / "trace.csv", runfiles.read_event_trace(run)
+    if not coarse_file.exists() and fine is None:
         return {}, []
     try:
         model = spectral.model_frequencies(summary)
     except ValueError as e:
         raise ValueError(f"{run / 'summary.json'}: {e}") from e
     cutoff = model["cutoff_hz"]
-    trace = runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))
+    trace = runfiles.trace_frames(runfiles.read_trace(coarse_file)) if coarse_file.exists() else None
     hands = runfiles.read_hands(run / "hands.csv") if (run / "hands.csv").exists() else None
-    end = float(trace["t"][-1])
+    after_events = fine if fine is not None else trace
+    end = float((trace if trace is not None else fine)["t"][-1])
     times = sorted({float(e["t"]) for e in summary.get("events", []) if e.get("type") != "ignored"})
     windows = []
     for k, t0 in enumerate(times):
         t1 = min(t0 + window, times[k + 1] if k + 1 < len(times) else end, end)
-        windows.append(vibration_window(trace, t0, t1, cutoff, hands))
+        windows.append(vibration_window(after_events, t0, t1, cutoff, hands))
+    if trace is None:  # no trace.csv: the last and the holding windows have no frames
+        trace = {"t": np.empty(0)}
     final = vibration_window(trace, max(end - window, 0.0), end, cutoff, hands)
     out = {f"{key}_final": final.get(key, math.nan)
            for key in ("vibration_rms", "slow_motion_rms", "vibration_velocity_rms", "contact_switch_rate",
@@ -109,6 +117,7 @@ def vibration(run, summary, window=VIBRATION_WINDOW):
     worst_event = max(events, key=lambda w: w["vibration_rms"], default={})
     out["vibration_rms_events"] = worst_event.get("vibration_rms", math.nan)
     out["slow_motion_rms_events"] = worst_event.get("slow_motion_rms", math.nan)
+    out["vibration_sample_hz_events"] = worst_event.get("sample_hz", math.nan)
     # Steady holding: from `window` seconds after a hold (its transient gone) to the next event;
     # vibration that follows the hand here, with hand_jitter_rms, is the sensor's.
     holding = []

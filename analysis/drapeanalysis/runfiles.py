@@ -97,6 +97,34 @@ def trace_frames(trace):
     }
 
 
+def read_event_trace(run):
+    """A run's event_trace/ folder (docs/outputs.md) as frames like trace_frames: times (K,),
+    positions and velocities (K, N, 3), fixed and contact (K, N), event flags (K,) true at the
+    first frame of each window; None when the run wrote none."""
+    folder = Path(run) / "event_trace"
+    if not folder.is_dir():
+        return None
+    arrays = {}
+    for name in ("t", "x", "v", "fixed", "contact"):
+        try:
+            arrays[name] = np.load(folder / f"{name}.npy")
+        except (OSError, ValueError) as e:
+            raise ValueError(f"{folder / (name + '.npy')}: {e}") from e
+    frames = len(arrays["t"])
+    for name in ("x", "v", "fixed", "contact"):
+        if len(arrays[name]) != frames:
+            raise ValueError(f"{folder / (name + '.npy')}: {len(arrays[name])} frames, t.npy has {frames}")
+    t = arrays["t"].astype(float)
+    step = np.diff(t)
+    # A window starts where the spacing is not the interval (the median spacing).
+    starts = np.ones(frames, dtype=bool)
+    if frames > 1:
+        starts[1:] = ~np.isclose(step, np.median(step), rtol=1e-6, atol=0)
+    return {"t": t, "x": arrays["x"].astype(float), "v": arrays["v"].astype(float),
+            "fixed": arrays["fixed"].astype(bool), "contact": arrays["contact"].astype(int),
+            "event": starts}
+
+
 def positions(frame):
     """The x, y, z columns of a state, dummy or trace DataFrame as an (N, 3) array."""
     return frame[["x", "y", "z"]].to_numpy(dtype=float)

@@ -194,6 +194,12 @@ OutputOptions read_output(JsonReader in, double duration, const ClothParams& clo
   o.energy_interval = output_interval(in, "energy_interval", o.energy_interval, duration, 1.0);
   o.trace_interval = output_interval(in, "trace_interval", 0.0, duration, particles);
   o.vtk_interval = output_interval(in, "vtk_interval", 0.0, duration, particles);
+  // Windows restart at each event, so the event trace never has more frames than a trace at its
+  // interval over the whole run (plus one a event).
+  o.event_trace_interval = output_interval(in, "event_trace_interval", 0.0, duration, particles);
+  o.event_trace_window = in.at_most(
+      "event_trace_window", in.positive("event_trace_window", in.number("event_trace_window", 0.5)),
+      limits::max_duration);
   in.finish();
   return o;
 }

@@ -20,6 +20,9 @@ struct OutputOptions {
   double energy_interval = 0.01;  ///< time between energy.csv rows [s]; 0 = every step
   double trace_interval = 0.0;    ///< time between trace.csv frames [s]; 0 = no trace.csv
   double vtk_interval = 0.0;      ///< time between VTK frames [s]; 0 = no frames
+  /// Time between event_trace/ frames [s] in the window after each event; 0 = no event_trace/.
+  double event_trace_interval = 0.0;
+  double event_trace_window = 0.5;  ///< length of that window [s]
 };
 
 /// A seeded perturbation of the initial positions, for ensembles (docs/scene.md; off by default).

@@ -63,12 +63,10 @@ void FrameRecorder::record(const Simulation& simulation, bool event, double inte
   for (; t >= next - tolerance; next += interval) {}
 }
 
-int FrameRecorder::contact(const Eigen::VectorXd& y, int i) const {
-  const Dummy* dummy = m_system.dummy();
+int contact_index(const ClothSystem& system, const Eigen::VectorXd& y, int i) {
+  const Dummy* dummy = system.dummy();
   if (!dummy) return -1;
-  // The object particle whose threshold sphere holds this particle: switches of it between
-  // frames are the collision switching that the vibration metrics look for.
-  return dummy->nearest_within(y.segment<3>(3 * i), m_system.params().collision.threshold).index;
+  return dummy->nearest_within(y.segment<3>(3 * i), system.params().collision.threshold).index;
 }
 
 void FrameRecorder::write_vtk(const Simulation& simulation, double t, const Eigen::VectorXd& y) {
@@ -78,7 +76,7 @@ void FrameRecorder::write_vtk(const Simulation& simulation, double t, const Eige
   // holds at every frame time inside it.
   for (const HandStatus& hand : simulation.manipulator().hands(t, y))
     if (hand.held >= 0) data.held[static_cast<std::size_t>(hand.held)] = 1;
-  for (std::size_t i = 0; i < n; ++i) data.contact[i] = contact(y, static_cast<int>(i));
+  for (std::size_t i = 0; i < n; ++i) data.contact[i] = contact_index(m_system, y, static_cast<int>(i));
   const std::string name = fmt::format("frame_{:05d}.vtk", m_vtk_count++);
   write_cloth_vtk(m_frames_dir / name, m_system, y, t, data);
   m_series.add(name, t);
@@ -92,7 +90,7 @@ void FrameRecorder::write_trace(double t, const Eigen::VectorXd& y, bool event) 
     const Vec3 v = y.segment<3>(n3 + 3 * i);
     *m_trace << fmt::format("{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{},{},{}\n",
                             t, i, x.x(), x.y(), x.z(), v.x(), v.y(), v.z(),
-                            m_system.constraints().is_fixed(i) ? 1 : 0, contact(y, i), event ? 1 : 0);
+                            m_system.constraints().is_fixed(i) ? 1 : 0, contact_index(m_system, y, i), event ? 1 : 0);
   }
 }
 

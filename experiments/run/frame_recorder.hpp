@@ -16,6 +16,10 @@
 
 namespace drape {
 
+/// The object particle within the collision threshold of particle i at state y, -1 for none: its
+/// switches between frames are the collision switching the vibration metrics count.
+int contact_index(const ClothSystem& system, const Eigen::VectorXd& y, int i);
+
 /// Writes trace.csv, frames/frame_NNNNN.vtk and frames/frames.vtk.series for the intervals of a scene's `output`.
 class FrameRecorder : public SimulationObserver {
  public:
@@ -33,8 +37,6 @@ class FrameRecorder : public SimulationObserver {
               Write write);
   void write_trace(double t, const Eigen::VectorXd& y, bool event);
   void write_vtk(const Simulation& simulation, double t, const Eigen::VectorXd& y);
-  /// The object particle within the collision threshold of particle i at state y, -1 for none.
-  int contact(const Eigen::VectorXd& y, int i) const;
 
   const ClothSystem& m_system;
   double m_trace_interval;

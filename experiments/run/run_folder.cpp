@@ -33,7 +33,7 @@ const std::vector<std::string>& run_file_names() {
   // summary.json first: clearing removes the mark of a complete folder before anything else.
   static const std::vector<std::string> names = {
       "summary.json", "summary.json.tmp", "energy.csv", "state.csv", "dummy.csv",
-      "hands.csv",    "trace.csv",        "frames"};
+      "hands.csv",    "trace.csv",        "frames",    "event_trace"};
   return names;
 }
 

@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "experiments/run/event_trace_recorder.hpp"
 #include "experiments/run/frame_recorder.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_files.hpp"
@@ -81,6 +82,8 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
   }
   FrameRecorder frames(scene.output, out_dir, system);
   simulation.add_observer(frames);
+  EventTraceRecorder event_frames(scene.output, out_dir, system);
+  simulation.add_observer(event_frames);
   if (observer) simulation.add_observer(*observer);
 
   const RunStatus& status = simulation.run();
