@@ -17,6 +17,7 @@
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "experiments/sweep/results_table.hpp"
 #include "experiments/sweep/deliberate_crash.hpp"
+#include "experiments/run/run_files.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "integrators/interface/integrator_options.hpp"
 
@@ -102,7 +103,7 @@ nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, SimulationObs
   summary["status"] = status;
   summary["reason"] = reason;
   summary["wall_seconds"] = wall;
-  write_json_atomic(dir / "bisect.json", {{"parameter", b.parameter}, {"stable_value", stable_value},
+  write_json(dir / "bisect.json", {{"parameter", b.parameter}, {"stable_value", stable_value},
                                           {"unstable_value", unstable_value}, {"probes", probes}});
   nlohmann::json row = result_row(run, summary);
   row["bisect_parameter"] = b.parameter;
@@ -120,7 +121,7 @@ void execute_run(const RunSpec& run, const fs::path& dir) {
   try {
     fs::remove_all(dir);  // leftovers of an interrupted run would mix with the new files
     fs::create_directories(dir);
-    write_json_atomic(dir / "run.json", run_identity(run));
+    write_json(dir / "run.json", run_identity(run));
     crash_if_asked_for_test(run.id);
     if (run.bisect) {
       row = run_bisect(run, dir, observer);
@@ -132,7 +133,7 @@ void execute_run(const RunSpec& run, const fs::path& dir) {
     row = error_row(run, e.what());
   }
   try {
-    write_json_atomic(dir / "result.json", row);
+    write_json(dir / "result.json", row);
   } catch (const std::exception& e) {
     std::cerr << "drapelab: " << run.id << ": " << e.what() << "\n";
   }
@@ -148,7 +149,7 @@ nlohmann::json ended_row(const RunSpec& run, const fs::path& dir, const ChildEnd
   row["status"] = "crashed";
   try {
     fs::create_directories(dir);
-    write_json_atomic(dir / "result.json", row);
+    write_json(dir / "result.json", row);
   } catch (const std::exception&) {
     // The row still reaches the results table; resume reruns the run either way.
   }
@@ -191,7 +192,7 @@ void write_table(const fs::path& stem, const nlohmann::json& header,
                         {"plan_size", header["plan_size"]},
                         {"shard", shard.empty() ? nlohmann::json() : nlohmann::json(shard)},
                         {"columns", columns},           {"runs", rows}};
-  write_json_atomic(stem.string() + ".json", doc);
+  write_json(stem.string() + ".json", doc, process_tmp_suffix());
   write_results_csv(stem.string() + ".csv", columns, rows);
   // An ensemble (`repeats`) also gets its statistics per group beside results.csv.
   if (shard.empty() &&
@@ -228,7 +229,7 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
 
   fs::create_directories(options.out_dir / "runs");
   const nlohmann::json header = experiment_header(experiment, plan);
-  write_json_atomic(options.out_dir / "experiment.json", header);
+  write_json(options.out_dir / "experiment.json", header, process_tmp_suffix());
 
   ExperimentTally tally;
   tally.planned = static_cast<int>(slice.size());
@@ -285,7 +286,7 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
 std::vector<std::string> merge_results(const fs::path& out_dir, const std::vector<fs::path>& sources) {
   if (!fs::exists(out_dir / "experiment.json") && !sources.empty()) {
     fs::create_directories(out_dir);
-    write_json_atomic(out_dir / "experiment.json", read_header(sources.front()));
+    write_json(out_dir / "experiment.json", read_header(sources.front()), process_tmp_suffix());
   }
   const nlohmann::json header = read_header(out_dir);
   const std::vector<std::string> ids = plan_ids(header);
