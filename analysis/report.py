@@ -264,10 +264,10 @@ def make_figures(directory, out_dir, rows, parameters):
 
 
 def write_html(out_dir, results, rows, figures, videos=(), pages=None):
-    """report.html: the question, the provenance, the method x scene summary, the figures (PNG,
-    linked to SVG and PDF, snapshots to their scene's viewer page), the viewer pages (`pages`
-    from viewer_pages.write_pages, None when not written), animations, and the full table
-    folded away."""
+    """report.html: the question, the provenance, the method x scene summary, the viewer pages
+    (`pages` from viewer_pages.write_pages, None when not written), the figures (PNG, linked to
+    SVG and PDF, snapshots to their scene's viewer page), animations, and the full table folded
+    away."""
     parts = [f"<h1>{html.escape(results['name'])}</h1>",
              f"<p><b>Question.</b> {html.escape(results.get('question') or '')}</p>",
              provenance_html(rows)]
