@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """Metrics, plots and an HTML report of an experiment folder.
 
-Usage: report.py DIR [--animate [RUN_ID ...]] [--frames N]
+Usage: report.py DIR [--drapelab PATH] [--animate [RUN_ID ...]] [--frames N]
 Reads DIR/results.json and the files of every run (docs/outputs.md); writes DIR/metrics.csv and
 DIR/metrics.json (the results table plus the metrics of docs/analysis.md) and DIR/report/:
-report.html with its figures as PNG, SVG and PDF, a method x scene summary and the full table.
-`drapelab report DIR` runs this script.
+report.html with the runs' provenance, its figures as PNG, SVG and PDF, a method x scene
+summary, 3-D viewer pages (report/view/, written with `PATH view`) and the full table.
+`drapelab report DIR` runs this script and passes itself as --drapelab.
 """
 import argparse
 import csv
@@ -13,6 +14,7 @@ import html
 import json
 import math
 import sys
+from collections import Counter
 from pathlib import Path
 
 try:
@@ -20,7 +22,7 @@ try:
 except ImportError:  # drapelab report checks for matplotlib and numpy only
     sys.exit("report.py needs pandas (Debian: apt install python3-pandas; install_dependencies.sh installs it)")
 
-from drapeanalysis import metrics, plots, runfiles, stats  # noqa: E402
+from drapeanalysis import metrics, plots, runfiles, stats, viewer_pages  # noqa: E402
 
 # Columns of the report's table besides the parameters; every column is in metrics.csv.
 TABLE_COLUMNS = (
@@ -41,6 +43,11 @@ SUMMARY_METRICS = (
     ("energy_drift_max_rel", "Largest relative energy error", "1", 1.0),
     ("wall_seconds", "Wall time", "s", 1.0),
 )
+
+# The provenance fields of the results table (docs/outputs.md, Provenance) and their titles.
+PROVENANCE = (("version", "drapelab version"), ("git_commit", "git commit"), ("build_type", "build type"),
+              ("sundials_version", "SUNDIALS version"), ("machine.hostname", "machine"),
+              ("machine.cpu", "CPU"), ("machine.cores", "cores"))
 
 
 def add_metrics(directory, results):
@@ -129,11 +136,60 @@ def summary_tables(rows, parameters):
     return "".join(parts)
 
 
-def html_table(rows, parameters):
-    """The results as an HTML table: id, parameters, the main metrics present."""
+def provenance_html(rows):
+    """Where the results come from: each provenance field's values over the runs (with their
+    counts when merged shards ran on different builds or machines) and the runs' dates."""
+    items = []
+    for key, title in PROVENANCE:
+        counts = Counter(str(cell(r[key])) for r in rows if clean(r.get(key)) not in (None, ""))
+        text = "; ".join(v if len(counts) == 1 else f"{v} ({n} run{'s' * (n > 1)})" for v, n in counts.items())
+        items.append((title, text or "not recorded"))
+    dates = sorted(str(r["date"]) for r in rows if r.get("date"))
+    items.append(("runs started", (dates[0] if dates[0] == dates[-1] else f"{dates[0]} to {dates[-1]}")
+                  if dates else "not recorded"))
+    body = "".join(f"<tr><th>{html.escape(t)}</th><td>{html.escape(v)}</td></tr>" for t, v in items)
+    dirty = any(str(r.get("git_commit", "")).endswith("-dirty") for r in rows)
+    return ("<h2>Provenance</h2><table class='provenance'>" + body + "</table>"
+            + ("<p>-dirty: built from a tree with uncommitted changes.</p>" if dirty else ""))
+
+
+def viewer_html(rows, parameters, pages):
+    """The viewer section: per scene the side-by-side page and every run's page, and why the
+    runs without a page have none."""
+    if pages is None:
+        return ("<h2>3-D viewer</h2><p>No viewer pages: report.py ran without --drapelab "
+                "(<code>drapelab report DIR</code> passes it).</p>")
+    links, notes, scenes = pages
+    parts = ["<h2>3-D viewer</h2><p>Each page plays runs in 3-D in the browser, offline "
+             "(<code>drapelab view</code>, docs/viewer.md): the cloth, the dress form, the hands, "
+             "a time slider with the events and the energy under it.</p><ul>"]
+    by_scene = {}
+    for row in rows:
+        by_scene.setdefault(plots.scene_name(row), []).append(row)
+    for scene, scene_rows in by_scene.items():
+        runs = ", ".join(f"<a href='{links[r['id']]}'>{html.escape(method_name(r, parameters))}</a>"
+                         for r in scene_rows if r["id"] in links)
+        item = f"<li><b>{html.escape(scene)}</b>: "
+        if scene in scenes:
+            page, chosen = scenes[scene]
+            names = " | ".join(html.escape(method_name(r, parameters)) for r in chosen)
+            item += f"<a href='{page}'>side by side: {names}</a>; "
+        parts.append(item + (f"each run: {runs}" if runs else "no run has a page") + "</li>")
+    parts.append("</ul>")
+    reasons = Counter(notes.values())
+    if reasons:
+        parts.append("<p>Runs without a page: " + "; ".join(
+            f"{n} run{'s' * (n > 1)}, {html.escape(reason.removeprefix('no page: '))}" for reason, n in reasons.items())
+            + " (the runs table names them).</p>")
+    return "".join(parts)
+
+
+def html_table(rows, parameters, pages=None):
+    """The results as an HTML table: id, its viewer page (or why none), parameters, the main
+    metrics present."""
     present = [c for c in TABLE_COLUMNS if any(clean(r.get(c)) not in (None, "") for r in rows)]
     columns = ["id"] + list(parameters) + present
-    head = "".join(f"<th>{html.escape(c)}</th>" for c in columns)
+    head = "".join(f"<th>{html.escape(c)}</th>" for c in columns[:1] + ["3-D"] * (pages is not None) + columns[1:])
     body = []
     for row in rows:
         cells = []
@@ -141,8 +197,12 @@ def html_table(rows, parameters):
             value = clean(row.get(c))
             text = "" if value is None else (f"{value:.4g}" if isinstance(value, float) else str(cell(value)))
             cells.append(f"<td>{html.escape(text)}</td>")
+        if pages is not None:  # the page beside the id
+            links, notes, _ = pages
+            cells.insert(1, f"<td><a href='{links[row['id']]}'>view</a></td>" if row["id"] in links
+                         else f"<td>{html.escape(notes.get(row['id'], ''))}</td>")
         body.append("<tr>" + "".join(cells) + "</tr>")
-    return f"<table><tr>{head}</tr>{''.join(body)}</table>"
+    return f"<div class='wide'><table><tr>{head}</tr>{''.join(body)}</table></div>"
 
 
 CAPTIONS = {
@@ -203,31 +263,40 @@ def make_figures(directory, out_dir, rows, parameters):
     return out
 
 
-def write_html(out_dir, results, rows, figures, videos=()):
-    """report.html: the question, the method x scene summary, the figures (PNG, linked to SVG
-    and PDF), animations, and the full table folded away."""
+def write_html(out_dir, results, rows, figures, videos=(), pages=None):
+    """report.html: the question, the provenance, the method x scene summary, the viewer pages
+    (`pages` from viewer_pages.write_pages, None when not written), the figures (PNG, linked to
+    SVG and PDF, snapshots to their scene's viewer page), animations, and the full table folded
+    away."""
     parts = [f"<h1>{html.escape(results['name'])}</h1>",
-             f"<p><b>Question.</b> {html.escape(results.get('question') or '')}</p>"]
+             f"<p><b>Question.</b> {html.escape(results.get('question') or '')}</p>",
+             provenance_html(rows)]
+    scene_pages = pages[2] if pages else {}
     summary = summary_tables(rows, results["parameters"])
     if summary:
         parts.append("<h2>Summary</h2><p>Method x scene; a dash: no value (the run diverged, or "
                      "the metric does not apply).</p>" + summary)
+    parts.append(viewer_html(rows, results["parameters"], pages))
     parts.append("<h2>Figures</h2>")
     for stem, caption in figures:
+        scene = stem.removeprefix("snapshots_").rpartition("_")[0] if stem.startswith("snapshots_") else ""
+        view = (f", <a href='{scene_pages[scene][0]}'>in 3-D</a>" if scene in scene_pages else "")
         parts.append(f'<figure><img src="{stem}.png" alt="{html.escape(stem)}">'
                      f"<figcaption>{html.escape(caption)} <a href='{stem}.svg'>SVG</a>, "
-                     f"<a href='{stem}.pdf'>PDF</a></figcaption></figure>")
+                     f"<a href='{stem}.pdf'>PDF</a>{view}</figcaption></figure>")
     for name in videos:
         parts.append(f"<figure><video controls src='{name}' width='640'></video>"
                      f"<figcaption>{html.escape(name)}</figcaption></figure>")
-    parts.append("<h2>Runs</h2><details><summary>Every run with its parameters and main metrics "
-                 f"({len(rows)} rows)</summary>" + html_table(rows, results["parameters"]) + "</details>")
+    parts.append("<h2>Runs</h2><details><summary>Every run with its parameters, viewer page and main "
+                 f"metrics ({len(rows)} rows)</summary>" + html_table(rows, results["parameters"], pages)
+                 + "</details>")
     parts.append("<p>Every parameter and metric: <a href='../metrics.csv'>metrics.csv</a>, "
                  "<a href='../metrics.json'>metrics.json</a>. Metrics: docs/analysis.md.</p>")
     style = ("body{font-family:sans-serif;margin:2em;max-width:80em}img{max-width:100%}"
              "table{border-collapse:collapse;font-size:80%;margin-bottom:1em}"
              "td,th{border:1px solid #ccc;padding:2px 5px}table.summary td{text-align:right}"
-             "figure{margin:1em 0}figcaption{max-width:60em}summary{cursor:pointer}")
+             "figure{margin:1em 0}figcaption{max-width:60em}summary{cursor:pointer}"
+             "table.provenance th{text-align:left;background:#f4f4f4}div.wide{overflow-x:auto}")
     page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{html.escape(results['name'])}"
             f"</title><style>{style}</style></head><body>{''.join(parts)}</body></html>\n")
     (out_dir / "report.html").write_text(page)
@@ -251,6 +320,8 @@ def animate(directory, out_dir, rows, ids, frames):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("directory", type=Path)
+    parser.add_argument("--drapelab", metavar="PATH",
+                        help="the drapelab program that writes the 3-D viewer pages (`drapelab report` passes itself)")
     parser.add_argument("--animate", nargs="*", metavar="RUN_ID",
                         help="also write an MP4 of these runs (every run when no id is given); needs ffmpeg")
     parser.add_argument("--frames", type=int, default=300, help="at most this many frames an animation")
@@ -264,7 +335,9 @@ def main():
     out_dir.mkdir(exist_ok=True)
     figures = make_figures(args.directory, out_dir, rows, results["parameters"])
     videos = animate(args.directory, out_dir, rows, args.animate, args.frames) if args.animate is not None else []
-    write_html(out_dir, results, rows, figures, videos)
+    pages = (viewer_pages.write_pages(args.directory, out_dir, rows, args.drapelab)
+             if args.drapelab else None)
+    write_html(out_dir, results, rows, figures, videos, pages)
     print(out_dir / "report.html")
 
 

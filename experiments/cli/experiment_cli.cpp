@@ -95,7 +95,11 @@ int report_command(const std::string& dir, const std::vector<std::string>& extra
                  "python3-numpy); set DRAPE_PYTHON to use another interpreter\n";
     return 1;
   }
+  // The script writes the report's 3-D viewer pages with this very program's `view`.
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
   std::vector<std::string> argv = {python, script.string(), dir};
+  if (!ec) argv.insert(argv.end(), {"--drapelab", self.string()});
   argv.insert(argv.end(), extra_args.begin(), extra_args.end());
   return run_program(argv);
 }

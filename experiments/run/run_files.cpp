@@ -38,17 +38,23 @@ void write_dummy_csv(const std::filesystem::path& file, const Dummy& dummy) {
   }
 }
 
-void write_json(const std::filesystem::path& file, const nlohmann::json& value) {
-  // Written under a temporary name and renamed: a reader (or a killed run) never leaves half a
-  // summary.json, whose presence marks a complete run folder (docs/outputs.md).
+void write_file_atomic(const std::filesystem::path& file, const std::string& suffix,
+                       const std::function<void(std::ostream&)>& write) {
+  // rename() replaces the file in one step: summary.json, whose presence marks a complete run
+  // folder (docs/outputs.md), and result.json, which marks a finished run, are never half there.
   std::filesystem::path tmp = file;
-  tmp += ".tmp";
+  tmp += suffix;
   {
     std::ofstream out = open_for_writing(tmp);
-    out << value.dump(2) << "\n";
+    write(out);
     if (!out.flush()) throw std::runtime_error("cannot write " + tmp.string());
   }
   std::filesystem::rename(tmp, file);
+}
+
+void write_json(const std::filesystem::path& file, const nlohmann::json& value,
+                const std::string& suffix) {
+  write_file_atomic(file, suffix, [&](std::ostream& out) { out << value.dump(2) << "\n"; });
 }
 
 }  // namespace drape

@@ -3,7 +3,9 @@
 // energy.csv, state.csv and summary.json, numbers with round-trip precision.
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "core/model/cloth_system.hpp"
 
@@ -16,7 +18,13 @@ void write_state_csv(const std::filesystem::path& file, const ClothSystem& syste
                      const Eigen::VectorXd& y);
 /// dummy.csv: `index,section,point,x,y,z,nx,ny,nz` for every object particle.
 void write_dummy_csv(const std::filesystem::path& file, const Dummy& dummy);
-/// Writes JSON with round-trip precision, creating nothing partial on failure.
-void write_json(const std::filesystem::path& file, const nlohmann::json& value);
+/// Writes `file` through `write` under the name `file` + `suffix`, then renames it: a reader
+/// never sees half a file, and a failed or killed writer leaves at most the temporary.
+void write_file_atomic(const std::filesystem::path& file, const std::string& suffix,
+                       const std::function<void(std::ostream&)>& write);
+/// Writes JSON with round-trip precision through write_file_atomic. The suffix `.tmp` is a run
+/// file (run_folder.cpp); processes writing one file alike each pass their own (results_table).
+void write_json(const std::filesystem::path& file, const nlohmann::json& value,
+                const std::string& suffix = ".tmp");
 
 }  // namespace drape

@@ -12,6 +12,7 @@
 #include <iostream>
 #include <map>
 #include <stdexcept>
+#include <thread>
 
 namespace drape {
 
@@ -55,20 +56,41 @@ std::string describe_child_end(const ChildEnd& end) {
 
 void run_in_children(std::size_t count, std::size_t jobs, const std::function<int(std::size_t)>& task,
                      const std::function<void(std::size_t, const ChildEnd&)>& on_end,
-                     const std::function<void(std::size_t)>& on_start) {
+                     const std::function<void(std::size_t)>& on_start,
+                     const std::function<void()>& on_tick, std::chrono::milliseconds tick_period) {
   jobs = std::max<std::size_t>(1, jobs);
   std::map<pid_t, std::size_t> running;
-  auto wait_one = [&] {
+  // Reaps one ended child (blocking or not); true when it was one of ours.
+  auto reap = [&](bool block) {
     int status = 0;
     pid_t pid;
-    do pid = ::waitpid(-1, &status, 0);
+    do pid = ::waitpid(-1, &status, block ? 0 : WNOHANG);
     while (pid < 0 && errno == EINTR);
     if (pid < 0) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
-    const auto it = running.find(pid);
-    if (it == running.end()) return;  // not ours (a child some caller started)
+    const auto it = pid > 0 ? running.find(pid) : running.end();
+    if (it == running.end()) return false;  // none ended, or not ours (a caller's child)
     const std::size_t k = it->second;
     running.erase(it);
     on_end(k, child_end(status));
+    return true;
+  };
+  // With a tick the parent polls: a timer without a thread (a forking process should have one)
+  // and without signals. A child's end is seen within one poll, which costs nothing.
+  constexpr std::chrono::milliseconds poll_period{20};
+  auto next_tick = std::chrono::steady_clock::now();
+  auto wait_one = [&] {
+    if (!on_tick) {
+      while (!reap(true)) {}
+      return;
+    }
+    while (!reap(false)) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now >= next_tick) {
+        on_tick();
+        next_tick = now + tick_period;
+      }
+      std::this_thread::sleep_for(poll_period);
+    }
   };
   for (std::size_t k = 0; k < count; ++k) {
     while (running.size() >= jobs) wait_one();

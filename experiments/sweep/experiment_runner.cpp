@@ -6,7 +6,9 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <set>
 #include <thread>
 
 #include "core/scene/input_error.hpp"
@@ -16,7 +18,9 @@
 #include "experiments/sweep/progress_reporter.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "experiments/sweep/results_table.hpp"
+#include "experiments/sweep/run_progress_file.hpp"
 #include "experiments/sweep/deliberate_crash.hpp"
+#include "experiments/run/run_files.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "integrators/interface/integrator_options.hpp"
 
@@ -63,15 +67,17 @@ std::vector<std::string> with(std::vector<std::string> assignments, const std::s
 }
 
 // Largest stable value of one parameter, by bisection (geometric: step sizes span decades).
-nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, SimulationObserver* observer) {
+nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, RunProgressFile& progress) {
   const BisectSpec& b = *run.bisect;
   nlohmann::json probes = nlohmann::json::array();
   nlohmann::json last_stable_summary;
   double wall = 0.0;
   auto probe = [&](double value) {
     const Scene scene = load_scene(run.scene_path.string(), with(run.assignments(), b.parameter, value));
+    // At most low, high and `steps` probes; fewer when the bracket is found wrong at once.
+    progress.set_part(static_cast<int>(probes.size()), b.steps + 2);
     const RunOutcome o =
-        run_scene(scene, dir / "probes" / fmt::format("{:02d}", probes.size()), observer);
+        run_scene(scene, dir / "probes" / fmt::format("{:02d}", probes.size()), &progress);
     const double drift = o.summary.value("energy_drift_max_rel", 0.0);
     const bool stable = o.status == "ok" && (!b.max_drift || drift <= *b.max_drift);
     wall += o.summary.value("wall_seconds", 0.0);
@@ -102,7 +108,7 @@ nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, SimulationObs
   summary["status"] = status;
   summary["reason"] = reason;
   summary["wall_seconds"] = wall;
-  write_json_atomic(dir / "bisect.json", {{"parameter", b.parameter}, {"stable_value", stable_value},
+  write_json(dir / "bisect.json", {{"parameter", b.parameter}, {"stable_value", stable_value},
                                           {"unstable_value", unstable_value}, {"probes", probes}});
   nlohmann::json row = result_row(run, summary);
   row["bisect_parameter"] = b.parameter;
@@ -113,26 +119,28 @@ nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, SimulationObs
 }
 
 // Runs one plan entry in its own folder and writes its result.json; never throws (a failure is
-// the run's status). Runs in a child process (run_experiment), whose progress stays in the child.
+// the run's status). Runs in a child process (run_experiment), which tells the parent its
+// progress through the folder's progress.json, removed once the run ends.
 void execute_run(const RunSpec& run, const fs::path& dir) {
-  SimulationObserver* const observer = nullptr;
+  RunProgressFile progress(dir);
   nlohmann::json row;
   try {
     fs::remove_all(dir);  // leftovers of an interrupted run would mix with the new files
     fs::create_directories(dir);
-    write_json_atomic(dir / "run.json", run_identity(run));
+    write_json(dir / "run.json", run_identity(run));
     crash_if_asked_for_test(run.id);
     if (run.bisect) {
-      row = run_bisect(run, dir, observer);
+      row = run_bisect(run, dir, progress);
     } else {
       const Scene scene = load_scene(run.scene_path.string(), run.assignments());
-      row = result_row(run, run_scene(scene, dir, observer).summary);
+      row = result_row(run, run_scene(scene, dir, &progress).summary);
     }
   } catch (const std::exception& e) {
     row = error_row(run, e.what());
   }
   try {
-    write_json_atomic(dir / "result.json", row);
+    fs::remove(progress_file(dir));
+    write_json(dir / "result.json", row);
   } catch (const std::exception& e) {
     std::cerr << "drapelab: " << run.id << ": " << e.what() << "\n";
   }
@@ -148,7 +156,7 @@ nlohmann::json ended_row(const RunSpec& run, const fs::path& dir, const ChildEnd
   row["status"] = "crashed";
   try {
     fs::create_directories(dir);
-    write_json_atomic(dir / "result.json", row);
+    write_json(dir / "result.json", row);
   } catch (const std::exception&) {
     // The row still reaches the results table; resume reruns the run either way.
   }
@@ -191,7 +199,7 @@ void write_table(const fs::path& stem, const nlohmann::json& header,
                         {"plan_size", header["plan_size"]},
                         {"shard", shard.empty() ? nlohmann::json() : nlohmann::json(shard)},
                         {"columns", columns},           {"runs", rows}};
-  write_json_atomic(stem.string() + ".json", doc);
+  write_json(stem.string() + ".json", doc, process_tmp_suffix());
   write_results_csv(stem.string() + ".csv", columns, rows);
   // An ensemble (`repeats`) also gets its statistics per group beside results.csv.
   if (shard.empty() &&
@@ -228,7 +236,7 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
 
   fs::create_directories(options.out_dir / "runs");
   const nlohmann::json header = experiment_header(experiment, plan);
-  write_json_atomic(options.out_dir / "experiment.json", header);
+  write_json(options.out_dir / "experiment.json", header, process_tmp_suffix());
 
   ExperimentTally tally;
   tally.planned = static_cast<int>(slice.size());
@@ -253,6 +261,16 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
   const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t jobs = options.jobs > 0 ? options.jobs : hardware;
   auto dir_of = [&](std::size_t p) { return options.out_dir / "runs" / slice[pending[p]]->id; };
+  // On a terminal the block is redrawn on a timer with each running child's progress.json.
+  std::set<std::size_t> running;
+  std::function<void()> tick;
+  if (options.progress && options.terminal)
+    tick = [&] {
+      for (const std::size_t p : running)
+        if (const auto fraction = read_run_progress(dir_of(p)))
+          progress.run_progress(slice[pending[p]]->id, *fraction);
+      progress.redraw();
+    };
   run_in_children(
       pending.size(), jobs,
       [&](std::size_t p) {
@@ -260,6 +278,7 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
         return 0;
       },
       [&](std::size_t p, const ChildEnd& end) {
+        running.erase(p);
         nlohmann::json row = ended_row(*slice[pending[p]], dir_of(p), end);
         const std::string status = row.value("status", "error");
         progress.run_finished(slice[pending[p]]->id, status, false);
@@ -269,7 +288,11 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
         else ++tally.unstable;
         rows[pending[p]] = std::move(row);
       },
-      [&](std::size_t p) { progress.run_started(slice[pending[p]]->id); });
+      [&](std::size_t p) {
+        running.insert(p);
+        progress.run_started(slice[pending[p]]->id);
+      },
+      tick);
   progress.finish();
 
   if (options.shard) {
@@ -285,7 +308,7 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
 std::vector<std::string> merge_results(const fs::path& out_dir, const std::vector<fs::path>& sources) {
   if (!fs::exists(out_dir / "experiment.json") && !sources.empty()) {
     fs::create_directories(out_dir);
-    write_json_atomic(out_dir / "experiment.json", read_header(sources.front()));
+    write_json(out_dir / "experiment.json", read_header(sources.front()), process_tmp_suffix());
   }
   const nlohmann::json header = read_header(out_dir);
   const std::vector<std::string> ids = plan_ids(header);

@@ -4,9 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <set>
 #include <unistd.h>
+
+#include "experiments/run/run_files.hpp"
 
 namespace drape {
 
@@ -121,11 +122,7 @@ std::vector<std::string> result_columns(const std::vector<std::string>& paramete
 
 void write_results_csv(const std::filesystem::path& file, const std::vector<std::string>& columns,
                        const std::vector<nlohmann::json>& rows) {
-  // Shards on one shared folder write the same files: each process its own temporary.
-  const std::filesystem::path tmp = fmt::format("{}.tmp.{}", file.string(), ::getpid());
-  {
-    std::ofstream out(tmp);
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+  write_file_atomic(file, process_tmp_suffix(), [&](std::ostream& out) {
     for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << csv_cell(columns[c]);
     out << "\n";
     for (const auto& row : rows) {
@@ -133,21 +130,9 @@ void write_results_csv(const std::filesystem::path& file, const std::vector<std:
         out << (c ? "," : "") << (row.contains(columns[c]) ? csv_cell(row[columns[c]]) : "");
       out << "\n";
     }
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  std::filesystem::rename(tmp, file);
+  });
 }
 
-void write_json_atomic(const std::filesystem::path& file, const nlohmann::json& value) {
-  // Shards on one shared folder write the same files: each process its own temporary.
-  const std::filesystem::path tmp = fmt::format("{}.tmp.{}", file.string(), ::getpid());
-  {
-    std::ofstream out(tmp);
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-    out << value.dump(2) << "\n";
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  std::filesystem::rename(tmp, file);
-}
+std::string process_tmp_suffix() { return fmt::format(".tmp.{}", ::getpid()); }
 
 }  // namespace drape

@@ -20,7 +20,8 @@ std::vector<std::string> result_columns(const std::vector<std::string>& paramete
 /// Writes rows as CSV with the given columns (JSON values dumped, strings quoted when needed).
 void write_results_csv(const std::filesystem::path& file, const std::vector<std::string>& columns,
                        const std::vector<nlohmann::json>& rows);
-/// Writes JSON to a temporary file and renames it, so readers never see half a file.
-void write_json_atomic(const std::filesystem::path& file, const nlohmann::json& value);
+/// `.tmp.PID`: the temporary suffix (write_file_atomic) of the files that the shards of an
+/// experiment, on one shared folder, write alike: each process its own temporary.
+std::string process_tmp_suffix();
 
 }  // namespace drape

@@ -134,3 +134,62 @@ class ReportEndToEndTest(unittest.TestCase):
         run_script(ANALYSIS / "examples" / "redraw_figure.py", self.directory, "--scene", "b", "--out", out)
         for fmt in ("png", "svg", "pdf"):
             self.assertTrue(out.with_suffix(f".{fmt}").stat().st_size > 0)
+
+
+class ReportProvenanceAndViewerTest(unittest.TestCase):
+    """The provenance block from the results rows, the runs paired side by side in the viewer,
+    and the viewer links of report.html (the pages themselves: report_viewer_check.py)."""
+
+    ROW = {"version": "0.9.0", "git_commit": "abc123", "build_type": "Release", "sundials_version": "6.4.1",
+           "machine.hostname": "lab1", "machine.cpu": "Xeon", "machine.cores": 8}
+
+    def test_provenance_names_every_field_and_counts_mixed_values(self):
+        rows = [dict(self.ROW, id="a", date="2026-11-23T22:01:23Z"),
+                dict(self.ROW, id="b", date="2026-11-23T22:05:00Z", **{"machine.hostname": "lab2"}),
+                dict(self.ROW, id="c", date="2026-11-23T22:03:00Z", git_commit="abc123-dirty")]
+        page = report.provenance_html(rows)
+        for text in ("<th>drapelab version</th><td>0.9.0</td>", "<th>build type</th><td>Release</td>",
+                     "<th>SUNDIALS version</th><td>6.4.1</td>", "<th>cores</th><td>8</td>",
+                     "<td>lab1 (2 runs); lab2 (1 run)</td>", "<td>abc123 (2 runs); abc123-dirty (1 run)</td>",
+                     "<th>runs started</th><td>2026-11-23T22:01:23Z to 2026-11-23T22:05:00Z</td>",
+                     "uncommitted changes"):
+            self.assertIn(text, page)
+        self.assertIn("<th>CPU</th><td>not recorded</td>", report.provenance_html([{"id": "x"}]))
+
+    def test_side_by_side_pairs_leapfrog_with_an_implicit_method_at_their_smallest_steps(self):
+        from drapeanalysis import viewer_pages
+        rows = [{"id": "ref", "integrator": "leapfrog", "integrator.dt": 1e-5, "is_reference": True},
+                {"id": "lf2", "integrator": "leapfrog", "integrator.dt": 2e-4},
+                {"id": "lf1", "integrator": "leapfrog", "integrator.dt": 1e-4},
+                {"id": "dirk", "integrator": "arkode-dirk", "integrator.dt": 1e-3},
+                {"id": "ie2", "integrator": "implicit-euler", "integrator.dt": 1e-2},
+                {"id": "ie1", "integrator": "implicit-euler", "integrator.dt": 2e-3}]
+        self.assertEqual([r["id"] for r in viewer_pages.side_by_side(rows)], ["lf1", "ie1"])
+        # One kind only: the reference and the finest run; a single run: no page.
+        self.assertEqual([r["id"] for r in viewer_pages.side_by_side(rows[:3])], ["ref", "lf1"])
+        self.assertEqual(viewer_pages.side_by_side(rows[1:2]), [])
+
+    def test_html_links_the_viewer_pages_and_says_why_a_run_has_none(self):
+        rows = [dict(id="a", scene="scenes/s.json", integrator="leapfrog", **{"integrator.dt": 0.001}),
+                dict(id="b", scene="scenes/s.json", integrator="implicit-euler", **{"integrator.dt": 0.002}),
+                dict(id="c", scene="scenes/s.json", integrator="leapfrog", **{"integrator.dt": 0.002})]
+        pages = ({"a": "view/a.html", "b": "view/b.html"},
+                 {"c": "no page: no trace.csv (output.trace_interval = 0)"},
+                 {"s": ("view/scenes/s.html", rows[:2])})
+        results = {"name": "n", "question": "q", "parameters": ["integrator.dt"]}
+        with tempfile.TemporaryDirectory() as tmp:
+            report.write_html(Path(tmp), results, rows, [("snapshots_s_front", "caption")], pages=pages)
+            page = (Path(tmp) / "report.html").read_text()
+            report.write_html(Path(tmp), results, rows, [])
+            without = (Path(tmp) / "report.html").read_text()
+        self.assertIn("<h2>Provenance</h2>", page)
+        self.assertIn("<a href='view/scenes/s.html'>side by side: leapfrog dt=0.001 | implicit-euler dt=0.002</a>",
+                      page)
+        self.assertIn("<a href='view/a.html'>leapfrog dt=0.001</a>", page)
+        self.assertIn("PDF</a>, <a href='view/scenes/s.html'>in 3-D</a></figcaption>", page)
+        self.assertIn("<td>a</td><td><a href='view/a.html'>view</a></td>", page)
+        self.assertIn("<td>c</td><td>no page: no trace.csv (output.trace_interval = 0)</td>", page)
+        self.assertIn("Runs without a page: 1 run, no trace.csv (output.trace_interval = 0)", page)
+        self.assertLess(page.index("<h2>3-D viewer</h2>"), page.index("<h2>Figures</h2>"))
+        self.assertIn("No viewer pages: report.py ran without --drapelab", without)
+        self.assertNotIn("<th>3-D</th>", without)

@@ -3,9 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <map>
+#include <thread>
 
 namespace {
 
@@ -28,6 +32,36 @@ TEST(ChildRuns, EveryTaskEndsOnceWithItsExitCodeOrSignal) {
   EXPECT_FALSE(ends[2].ok());
   EXPECT_EQ(drape::describe_child_end(ends[3]), "signal 11 (SIGSEGV)");
   EXPECT_EQ(drape::describe_child_end(ends[4]), "signal 6 (SIGABRT)");
+}
+
+TEST(ChildRuns, TheParentTicksWhileItsChildrenRun) {
+  // Each child runs until the parent's tick has written its go file: it can only end with status
+  // 0 if the parent ticked while it ran (exit 1 after 20 s without one).
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "child_runs_tick";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  auto go = [&](std::size_t k) { return dir / ("go" + std::to_string(k)); };
+  std::map<std::size_t, drape::ChildEnd> ends;
+  int ticks = 0;
+  drape::run_in_children(
+      3, 2,
+      [&](std::size_t k) {
+        for (int i = 0; i < 2000; ++i) {
+          if (fs::exists(go(k))) return 0;
+          std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return 1;
+      },
+      [&](std::size_t k, const drape::ChildEnd& end) { ends.emplace(k, end); }, {},
+      [&] {
+        ++ticks;
+        for (std::size_t k = 0; k < 3; ++k) std::ofstream(go(k)) << "go";
+      },
+      std::chrono::milliseconds(50));
+  ASSERT_EQ(ends.size(), 3u);
+  for (const auto& [k, end] : ends) EXPECT_TRUE(end.ok()) << k << ": " << drape::describe_child_end(end);
+  EXPECT_GE(ticks, 1);
 }
 
 TEST(ChildRuns, AKilledChildMayHaveRunOutOfMemory) {

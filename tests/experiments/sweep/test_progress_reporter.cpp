@@ -14,20 +14,21 @@ namespace {
 TEST(ProgressReporter, TimeLeftComesFromTheRunsOwnProgress) {
   std::ostringstream out;
   drape::ProgressReporter progress(4, drape::ProgressStyle::Off, out);
-  EXPECT_LT(progress.seconds_left(), 0.0);  // nothing done: unknown
+  EXPECT_LT(progress.seconds_left(10.0), 0.0);  // nothing done: unknown
   progress.run_started("a");
   progress.run_started("b");
   progress.run_progress("a", 0.5);
   progress.run_progress("b", 0.5);
-  // One run's work done of four: three times the elapsed time is left.
-  const double left = progress.seconds_left();
-  EXPECT_GE(left, 0.0);
+  // One run's work done of four in 10 s: three runs' work, 30 s, is left.
+  EXPECT_DOUBLE_EQ(progress.seconds_left(10.0), 30.0);
   progress.run_finished("a", "ok", false);
   progress.run_finished("b", "ok", true);  // resumed: neither work done nor left
   progress.run_started("c");
   progress.run_progress("c", 0.25);
-  // 1.25 of 3 units done.
-  EXPECT_GE(progress.seconds_left(), 0.0);
+  // 1.25 of 3 units done in 10 s: 1.75 units, 14 s, left.
+  EXPECT_DOUBLE_EQ(progress.seconds_left(10.0), 14.0);
+  progress.run_progress("gone", 0.9);  // a run not (or no longer) running changes nothing
+  EXPECT_DOUBLE_EQ(progress.seconds_left(10.0), 14.0);
   progress.finish();
   EXPECT_EQ(out.str(), "");  // Off draws nothing
 }
@@ -36,18 +37,47 @@ TEST(ProgressReporter, BlockFitsEightyColumnsAndNamesTheRunningRuns) {
   std::ostringstream out;
   drape::ProgressReporter progress(3, drape::ProgressStyle::Off, out);
   const std::string long_id = "integrator.name=arkode-dirk__integrator.table=ARKODE_SDIRK_5_3_4"
-                              "__integrator.dt=0.001__cloth.damping_spring=0.01";
+                              "__integrator.dt=0.001__cloth.damping_spring=0.01-58e3f3fb";
   progress.run_started(long_id);
   progress.run_progress(long_id, 0.42);
   progress.run_started("short");
-  const auto lines = progress.block(79);
+  const auto lines = progress.block(79, 5.0);
   ASSERT_EQ(lines.size(), 3u);
   for (const auto& line : lines) EXPECT_LE(line.size(), 79u) << line;
-  EXPECT_EQ(lines[0].rfind("[--------------------] 0/3", 0), 0u) << lines[0];
-  EXPECT_NE(lines[1].find("integrator.name=arkode-dirk"), std::string::npos);
-  EXPECT_NE(lines[1].find("42%"), std::string::npos) << lines[1];
+  // 0.42 of 3 runs in 5 s: 2.58 / 0.42 x 5 s = 30.7 s left.
+  EXPECT_EQ(lines[0], "[--------------------] 0/3  ok 0  unstable 0  error 0  0:05  ~0:31 left");
+  // A long id keeps its start and its end (the values and hash that tell runs apart).
+  EXPECT_EQ(lines[1].rfind("  integrator.name=arkode-dirk", 0), 0u) << lines[1];
+  EXPECT_EQ(lines[1].size(), 79u);
+  EXPECT_EQ(lines[1].substr(36, 3), "...") << lines[1];  // 34 characters either side
+  EXPECT_EQ(lines[1].substr(79 - 15), "-58e3f3fb   42%") << lines[1];
   EXPECT_NE(lines[2].find("short"), std::string::npos);
   EXPECT_NE(lines[2].find("0%"), std::string::npos);
+}
+
+TEST(ProgressReporter, TerminalRedrawsInPlaceOnRequest) {
+  std::ostringstream out;
+  drape::ProgressReporter progress(2, drape::ProgressStyle::Terminal, out);
+  EXPECT_EQ(out.str(), "");  // no thread: nothing happens until the runner asks
+  progress.run_started("x");
+  progress.run_progress("x", 0.5);
+  progress.redraw();
+  const std::string first = out.str();
+  EXPECT_EQ(first.rfind("\r\x1b[J[", 0), 0u) << first;
+  EXPECT_NE(first.find("\n  x "), std::string::npos) << first;
+  EXPECT_NE(first.find("50%"), std::string::npos) << first;
+  progress.run_progress("x", 0.75);
+  progress.redraw();
+  // Up one line (the block has two), clear, draw again.
+  const std::string second = out.str().substr(first.size());
+  EXPECT_EQ(second.rfind("\x1b[1A\r\x1b[J[", 0), 0u) << second;
+  EXPECT_NE(second.find("75%"), std::string::npos) << second;
+  progress.run_finished("x", "ok", false);
+  progress.finish();
+  EXPECT_EQ(out.str().back(), '\n');  // the last block stays, the shell prompt below it
+  const std::size_t before = out.str().size();
+  progress.redraw();  // finished: nothing more
+  EXPECT_EQ(out.str().size(), before);
 }
 
 TEST(ProgressReporter, LinesStylePrintsOneLinePerFinishedRun) {
@@ -84,6 +114,14 @@ TEST(ProgressReporter, ExperimentOffATerminalLogsEachRunAndTabulatesProvenance) 
   for (const char* done : {"[1/3] ", "[2/3] ", "[3/3] "})
     EXPECT_NE(r.err.find(std::string("drapelab: ") + done), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find('\x1b'), std::string::npos);
+  // Each child's progress.json is gone with its run; the run files stay.
+  int runs = 0;
+  for (const auto& run : fs::directory_iterator(dir / "out" / "runs")) {
+    ++runs;
+    EXPECT_FALSE(fs::exists(run.path() / "progress.json")) << run.path();
+    EXPECT_TRUE(fs::exists(run.path() / "result.json")) << run.path();
+  }
+  EXPECT_EQ(runs, 3);
   const std::string csv = drape::testing::read_text(dir / "out" / "results.csv");
   const std::string header = csv.substr(0, csv.find('\n'));
   for (const char* column : {"version", "git_commit", "build_type", "sundials_version", "date",
