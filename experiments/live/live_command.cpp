@@ -83,7 +83,7 @@ void serve_hand(httplib::Server& server, LiveSession& session) {
       if (reader.boolean("tracked", true))
         sample = HandSample{Vec3(reader.number("x"), reader.number("y"), reader.number("z")), false};
       reader.finish();
-      session.hand(name == "left" ? Hand::Left : Hand::Right, sample);
+      session.hand(name == "left" ? Hand::Left : Hand::Right, sample, "POST /hand");
       res.status = 200;
       res.set_content("ok\n", "text/plain");
     } catch (const InputError& e) {
@@ -100,7 +100,9 @@ int live(const LiveOptions& o) {
   std::unique_ptr<SensorBridge> sensor;
   if (o.sensor_port != 0)
     sensor = std::make_unique<SensorBridge>(
-        o.sensor_port, [&session](const HandFrame& frame) { session.sensor_frame(frame); });
+        o.sensor_port, [&session](const HandFrame& frame, const std::string& where) {
+          session.sensor_frame(frame, where);
+        });
 
   httplib::Server server;
   const std::string page = live_page(session.scene_json());

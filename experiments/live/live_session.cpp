@@ -101,23 +101,24 @@ LiveSession::LiveSession(Scene scene, std::filesystem::path out_dir, bool live_h
 
 LiveSession::~LiveSession() = default;
 
-void LiveSession::hand(Hand hand, const std::optional<HandSample>& sample) {
+void LiveSession::hand(Hand hand, const std::optional<HandSample>& sample,
+                       const std::string& source) {
   const char* name = hand == Hand::Left ? "left" : "right";
   if (sample)
     for (int k = 0; k < 3; ++k)
       if (!(std::abs(sample->position[k]) <= max_hand_coordinate))  // NaN fails too
-        throw InputError("hand", std::string(name) + "." + "xyz"[k],
+        throw InputError(source, std::string(name) + "." + "xyz"[k],
                          fmt::format("{} is not a scene coordinate within +-{} m",
                                      sample->position[k], max_hand_coordinate));
   if (m_live_hands) m_live_hands->set(hand, sample);
 }
 
-void LiveSession::sensor_frame(const HandFrame& frame) {
+void LiveSession::sensor_frame(const HandFrame& frame, const std::string& source) {
   const SensorTransform& transform = m_run->input()->config.transform;
   for (const Hand h : {Hand::Left, Hand::Right}) {
     std::optional<HandSample> sample = h == Hand::Left ? frame.left : frame.right;
     if (sample) sample->position = transform.point(sample->position);
-    hand(h, sample);
+    hand(h, sample, source);
   }
   for (const std::string& k : frame.keys) key(k);
 }

@@ -41,11 +41,12 @@ class LiveSession {
   void key(const std::string& key);
   /// Whether hand() and sensor_frame() drive the hands.
   bool live_hands() const { return m_live_hands != nullptr; }
-  /// A live hand in the scene frame (nullopt: not tracked); only with live_hands().
-  void hand(Hand hand, const std::optional<HandSample>& sample);
+  /// A live hand in the scene frame (nullopt: not tracked); only with live_hands(). Throws
+  /// InputError naming `source` for a coordinate beyond 10 m.
+  void hand(Hand hand, const std::optional<HandSample>& sample, const std::string& source);
   /// A sensor bridge frame (sensor frame, mapped by the scene's input.transform): its hands and
   /// keys; its time is not used, the frame counts when it arrives. Only with live_hands().
-  void sensor_frame(const HandFrame& frame);
+  void sensor_frame(const HandFrame& frame, const std::string& source);
   /// What the page needs once: grid, pins, the dress form, whether the hands are live.
   const std::string& scene_json() const { return m_scene_json; }
   /// The latest frame as a JSON text and its number (0 before the first).

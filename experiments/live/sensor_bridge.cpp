@@ -26,7 +26,7 @@ bool readable(int fd) {
 
 }  // namespace
 
-SensorBridge::SensorBridge(int port, std::function<void(const HandFrame&)> on_frame)
+SensorBridge::SensorBridge(int port, FrameHandler on_frame)
     : m_port(port), m_on_frame(std::move(on_frame)) {
   if (port < 1 || port > 65535)
     throw InputError("--sensor-port", "", fmt::format("{} is not a TCP port (1-65535)", port));
@@ -105,11 +105,11 @@ void SensorBridge::line(const std::string& text, const std::string& name, int nu
     const HandFrame frame = read_drapelab_frame_line(text, name, where);
     detail::check_time_order(previous_t, frame.t, name, where + ".t");
     previous_t = frame.t;
-    m_on_frame(frame);  // throws InputError for a hand out of range
+    m_on_frame(frame, name + ": " + where);  // throws InputError for a hand out of range
     ++m_frames;
   } catch (const InputError& e) {
     ++m_malformed;
-    const std::string context = e.file() == name ? "" : name + ": " + where + ": ";
+    const std::string context = e.file().rfind(name, 0) == 0 ? "" : name + ": " + where + ": ";
     std::cerr << "drapelab live: " << context << e.what() << ": line ignored\n";
   }
 }

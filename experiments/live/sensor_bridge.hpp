@@ -11,13 +11,14 @@
 namespace drape {
 
 /// Listens on 127.0.0.1:port from construction until destruction, one connection at a time.
-/// Every valid frame goes to `on_frame` (from the bridge's thread). A malformed line (bad JSON,
+/// Every valid frame goes to `on_frame` with its connection and line (from the bridge's thread). A malformed line (bad JSON,
 /// an unknown field, a NaN, a time not later than the connection's previous frame) is reported
 /// on stderr with its connection and line and ignored; the connection stays open.
 class SensorBridge {
  public:
   /// Throws InputError naming `--sensor-port` when it cannot listen there.
-  SensorBridge(int port, std::function<void(const HandFrame&)> on_frame);
+  using FrameHandler = std::function<void(const HandFrame&, const std::string& where)>;
+  SensorBridge(int port, FrameHandler on_frame);
   ~SensorBridge();
   SensorBridge(const SensorBridge&) = delete;
   SensorBridge& operator=(const SensorBridge&) = delete;
@@ -32,7 +33,7 @@ class SensorBridge {
 
   int m_port;
   int m_listen_fd = -1;
-  std::function<void(const HandFrame&)> m_on_frame;
+  FrameHandler m_on_frame;
   std::atomic<bool> m_stop{false};
   std::atomic<long> m_frames{0};
   std::atomic<long> m_malformed{0};

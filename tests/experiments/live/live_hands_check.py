@@ -3,7 +3,7 @@
 `drapelab live fig2_hold.json --live-hands --sensor-port Q`: POST /hand refuses a body that is
 not JSON (NaN), a coordinate out of range, a missing one and an unknown hand with 400 and a
 message; a valid one moves the right hand to the posted point; moved onto particle (14, 10) the
-hand holds it; a sensor bridge client writing JSON Lines (a header, two malformed lines, frames)
+hand holds it; a sensor bridge client writing JSON Lines (a header, three malformed lines, frames)
 moves the hand and the held particle with it; `r` releases. After SIGINT: the summary has the
 hold and the release, the malformed lines were reported and ignored, recording.jsonl holds the
 hand frames, and `drapelab run OUT/scene.json` replays the same events. Without --live-hands
@@ -39,10 +39,11 @@ def particle(frame, i):
 
 def check_validation(run):
     for body, expect in [('{"x": NaN, "y": 1, "z": 0}', "not valid JSON"),
-                         ('{"x": 0, "y": 1e9, "z": 0}', "right.y"),
-                         ('{"x": 0, "y": 1}', "z"),
-                         ('{"hand": "middle", "x": 0, "y": 1, "z": 0}', "hand"),
-                         ('{"x": 0, "y": 1, "z": 0, "speed": 2}', "speed")]:
+                         ('{"x": 0, "y": 1e9, "z": 0}',
+                          "POST /hand: right.y: 1000000000 is not a scene coordinate within +-10 m"),
+                         ('{"x": 0, "y": 1}', "POST /hand: z: required field is missing"),
+                         ('{"hand": "middle", "x": 0, "y": 1, "z": 0}', "POST /hand: hand: expected"),
+                         ('{"x": 0, "y": 1, "z": 0, "speed": 2}', "POST /hand: speed: unknown key")]:
         status, text = run.post("/hand", body)
         assert status == 400 and expect in text, (body, status, text)
 
@@ -74,6 +75,7 @@ def main():
             lines = ['{"format": "drapelab-recording", "version": 1}',
                      '{"t": 0.0, "right": [0.0, "up", 0.0]}',
                      'not json',
+                     '{"t": 0.05, "right": [0.0, 50.0, 0.0]}',
                      *[json.dumps({"t": 0.1 * k, "right": list(lift)}) for k in range(1, 4)]]
             bridge.sendall(("\n".join(lines) + "\n").encode())
             frame = run.wait_for(lambda f: near(right_hand(f)["position"], lift, 1e-12) and
@@ -87,9 +89,10 @@ def main():
         run.wait_for(lambda f: any(e["type"] == "release" for e in f["events"]), "the release")
         code, stdout, stderr = run.stop()
         assert code == 0, (code, stdout, stderr)
-        assert "sensor bridge: 3 frames, 2 malformed lines ignored" in stdout, stdout
+        assert "sensor bridge: 3 frames, 3 malformed lines ignored" in stdout, stdout
         assert "connection 1: line 2.right: expected an array of numbers" in stderr, stderr
         assert "connection 1: line 3: not valid JSON" in stderr, stderr
+        assert "connection 1: line 4: right.y: 50 is not a scene coordinate" in stderr, stderr
 
         summary = json.loads((out / "summary.json").read_text())
         assert summary["status"] == "stopped", summary["status"]
