@@ -229,7 +229,9 @@ void LiveSession::write_outputs(const std::string& status) {
       o->on_end(simulation);
   nlohmann::json summary = run_summary(*m_run, *m_energy);
   summary["status"] = status;
-  summary["live"] = {{"recording", "recording.jsonl"}, {"replay", "scene.json"}};
+  summary["live"] = {{"recording", "recording.jsonl"},
+                     {"replay", "scene.json"},
+                     {"hands", m_live_hands ? "live" : "scene"}};
   if (status != "diverged" && status != "failed")
     write_state_csv(m_out_dir / "state.csv", m_run->system(), simulation.state());
   write_json(m_out_dir / "summary.json", summary);

@@ -96,6 +96,7 @@ def main():
 
         summary = json.loads((out / "summary.json").read_text())
         assert summary["status"] == "stopped", summary["status"]
+        assert summary["live"]["hands"] == "live", summary["live"]
         events = summary["events"]
         types = [e["type"] for e in events]
         assert "hold" in types and "release" in types, events
