@@ -6,7 +6,7 @@ and that the WebGL canvas is not blank, presses `m` in the page as a user would,
 event arrive, stops the run with SIGINT and checks that the summary has the event at a time
 and that `drapelab run OUT/scene.json` replays the same events. Then, with fig2_hold.json and
 --live-hands, presses `h` and moves the pointer over the view: the right hand appears where
-the pointer put it. With DRAPE_LIVE_SCREENSHOT=FILE.png it then holds and lifts the cloth through
+the pointer put it. With a step 100 times smaller the page says it cannot keep up. With DRAPE_LIVE_SCREENSHOT=FILE.png it then holds and lifts the cloth through
 POST /hand and saves the page seen from 3/4 (docs/images/live.png).
 Usage: live_browser_check.py DRAPELAB SOURCE_DIR WORK_DIR   (exit 77: no chromium, driver or
 selenium, skipped)
@@ -126,6 +126,21 @@ def pointer_check(driver, drapelab, source, work):
         assert run.stop()[0] == 0
 
 
+def behind_check(driver, drapelab, source, work):
+    """A step 100 times smaller than fig2_hold's cannot keep up: the page says so."""
+    with LiveRun(drapelab, source / "experiments/scenes/fig2_hold.json", work / "behind",
+                 "--set", "integrator.dt=2e-6") as run:
+        driver.get(run.url + "/#test")
+        text = wait(driver, "var b = document.getElementById('behind'); "
+                    "return !b.hidden && b.textContent", "the page's 'cannot keep up'")
+        rtf = driver.execute_script("return document.getElementById('rtf').textContent")
+        frame = run.latest()
+        assert text.startswith("cannot keep up: ") and frame["behind"] and frame["rtf"] < 0.5, \
+            (text, frame["rtf"])
+        assert run.stop()[0] == 0
+        print(f"behind: '{text}', '{rtf}'")
+
+
 def main():
     drapelab, source, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
     driver = browser()
@@ -134,6 +149,7 @@ def main():
     try:
         key_check(driver, drapelab, source, work)
         pointer_check(driver, drapelab, source, work)
+        behind_check(driver, drapelab, source, work)
     finally:
         driver.quit()
 
