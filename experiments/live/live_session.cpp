@@ -64,6 +64,15 @@ std::string page_scene_json(const ClothSystem& system, const Scene& scene, bool 
       .dump();
 }
 
+void check_hand(Hand hand, const std::optional<HandSample>& sample, const std::string& source) {
+  if (!sample) return;
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(sample->position[k]) <= max_hand_coordinate))  // NaN fails too
+      throw InputError(source, std::string(hand == Hand::Left ? "left." : "right.") + "xyz"[k],
+                       fmt::format("{} is not a scene coordinate within +-{} m",
+                                   sample->position[k], max_hand_coordinate));
+}
+
 }  // namespace
 
 LiveSession::LiveSession(Scene scene, std::filesystem::path out_dir, bool live_hands)
@@ -103,23 +112,20 @@ LiveSession::~LiveSession() = default;
 
 void LiveSession::hand(Hand hand, const std::optional<HandSample>& sample,
                        const std::string& source) {
-  const char* name = hand == Hand::Left ? "left" : "right";
-  if (sample)
-    for (int k = 0; k < 3; ++k)
-      if (!(std::abs(sample->position[k]) <= max_hand_coordinate))  // NaN fails too
-        throw InputError(source, std::string(name) + "." + "xyz"[k],
-                         fmt::format("{} is not a scene coordinate within +-{} m",
-                                     sample->position[k], max_hand_coordinate));
+  check_hand(hand, sample, source);
   if (m_live_hands) m_live_hands->set(hand, sample);
 }
 
 void LiveSession::sensor_frame(const HandFrame& frame, const std::string& source) {
   const SensorTransform& transform = m_run->input()->config.transform;
-  for (const Hand h : {Hand::Left, Hand::Right}) {
-    std::optional<HandSample> sample = h == Hand::Left ? frame.left : frame.right;
-    if (sample) sample->position = transform.point(sample->position);
-    hand(h, sample, source);
-  }
+  std::optional<HandSample> left = frame.left, right = frame.right;
+  if (left) left->position = transform.point(left->position);
+  if (right) right->position = transform.point(right->position);
+  // Both checked before either is used: a frame counts whole or not at all.
+  check_hand(Hand::Left, left, source);
+  check_hand(Hand::Right, right, source);
+  hand(Hand::Left, left, source);
+  hand(Hand::Right, right, source);
   for (const std::string& k : frame.keys) key(k);
 }
 
