@@ -169,6 +169,12 @@ void add_live_command(CLI::App& app) {
                 "the page's pointer (POST /hand) and the sensor bridge drive the hands instead "
                 "of the scene's recording (always so for a scene without recorded hands)");
   cmd->add_flag("--open", o->open, "open the page in the desktop's browser");
+  cmd->footer(
+      "Examples (docs/live.md):\n"
+      "  drapelab live experiments/scenes/fig6_map.json --port 8080       # keys r a m in the page\n"
+      "  drapelab live experiments/scenes/fig2_hold.json --port 8080 --live-hands   # h: pointer hand\n"
+      "  drapelab live experiments/scenes/fig2_hold.json --port 8080 --sensor-port 9000\n"
+      "  drapelab run out/live/scene.json --out out/replay                # replay a live run");
   cmd->callback([o] {
     int code = exit_ok;
     try {
