@@ -83,9 +83,9 @@ Recording read_drapelab_recording(const std::string& file) {
   bool header = false;
   while (lines.next(line)) {
     if (detail::split_fields(line, ' ').empty()) continue;
-    // Syntax, numbers out of range and nesting beyond max_json_depth, naming the line.
-    const nlohmann::json object = parse_json_text(line, file, lines.where());
     if (!header) {
+      // Syntax, numbers out of range and nesting beyond max_json_depth, naming the line.
+      const nlohmann::json object = parse_json_text(line, file, lines.where());
       JsonReader reader(object, file, lines.where() + " (header)");
       if (reader.string("format") != native_format)
         throw reader.error("format", std::string("expected \"") + native_format + "\"");
@@ -95,13 +95,18 @@ Recording read_drapelab_recording(const std::string& file) {
       header = true;
       continue;
     }
-    HandFrame frame = read_frame(object, file, lines.where());
+    HandFrame frame = read_drapelab_frame_line(line, file, lines.where());
     if (!recording.frames.empty())
       detail::check_time_order(recording.frames.back().t, frame.t, file, lines.where() + ".t");
     recording.frames.push_back(std::move(frame));
   }
   if (!header) throw InputError(file, "", "empty file: expected the drapelab-recording header");
   return recording;
+}
+
+HandFrame read_drapelab_frame_line(const std::string& line, const std::string& file,
+                                   const std::string& where) {
+  return read_frame(parse_json_text(line, file, where), file, where);
 }
 
 nlohmann::ordered_json frame_to_json(const HandFrame& frame) {

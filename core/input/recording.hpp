@@ -53,6 +53,11 @@ RecordingFormat detect_recording_format(const std::string& file);
 
 /// Reads a native drapelab JSON Lines recording.
 Recording read_drapelab_recording(const std::string& file);
+/// One frame line of the native JSON Lines format (after the header), as read_drapelab_recording
+/// reads it; errors name `file` and `where` (e.g. "line 3"). The live mode's sensor bridge reads
+/// its stream with it (docs/live.md).
+HandFrame read_drapelab_frame_line(const std::string& line, const std::string& file,
+                                   const std::string& where);
 /// Writes a recording as native JSON Lines (round-trip precision); throws InputError on failure.
 void write_drapelab_recording(const Recording& recording, const std::string& file);
 /// Reads a recording in any supported format (Auto: detected from the content).

@@ -9,8 +9,11 @@
 #include <thread>
 
 #include "core/scene/input_error.hpp"
+#include "core/scene/json_reader.hpp"
+#include "core/scene/json_text.hpp"
 #include "experiments/live/live_page.hpp"
 #include "experiments/live/live_session.hpp"
+#include "experiments/live/sensor_bridge.hpp"
 #include "experiments/run/run_scene.hpp"
 
 // Last: its system headers define macros that Eigen's templates (through the scene) trip over.
@@ -29,6 +32,8 @@ struct LiveOptions {
   std::string out_dir = "out/live";
   std::vector<std::string> overrides;
   int port = 0;
+  int sensor_port = 0;  ///< 0: no sensor bridge
+  bool live_hands = false;
   bool open = false;
 };
 
@@ -56,17 +61,56 @@ void serve_events(httplib::Server& server, const LiveSession& session) {
   });
 }
 
+// POST /hand: {"x": .., "y": .., "z": ..} in the scene frame, optionally "hand": "left" or
+// "right" (default), or {"hand": .., "tracked": false} to take the hand away.
+void serve_hand(httplib::Server& server, LiveSession& session) {
+  server.Post("/hand", [&session](const httplib::Request& req, httplib::Response& res) {
+    res.status = 400;
+    if (!session.live_hands()) {
+      res.status = 409;
+      res.set_content("the hands replay the scene's recording; start drapelab live with "
+                      "--live-hands to drive them\n", "text/plain");
+      return;
+    }
+    try {
+      const nlohmann::json body = parse_json_text(req.body, "POST /hand");
+      if (!body.is_object()) throw InputError("POST /hand", "", "expected a JSON object");
+      JsonReader reader(body, "POST /hand", "");
+      const std::string name = reader.string("hand", "right");
+      if (name != "left" && name != "right")
+        throw reader.error("hand", "expected \"left\" or \"right\"");
+      std::optional<HandSample> sample;
+      if (reader.boolean("tracked", true))
+        sample = HandSample{Vec3(reader.number("x"), reader.number("y"), reader.number("z")), false};
+      reader.finish();
+      session.hand(name == "left" ? Hand::Left : Hand::Right, sample, "POST /hand");
+      res.status = 200;
+      res.set_content("ok\n", "text/plain");
+    } catch (const InputError& e) {
+      res.set_content(std::string(e.what()) + "\n", "text/plain");
+    }
+  });
+}
+
 int live(const LiveOptions& o) {
   if (o.port < 1 || o.port > 65535)
     throw InputError("--port", "", fmt::format("{} is not a TCP port (1-65535)", o.port));
   const Scene scene = load_scene(o.scene_file, o.overrides);
-  LiveSession session(scene, o.out_dir);
+  LiveSession session(scene, o.out_dir, o.live_hands || o.sensor_port != 0);
+  std::unique_ptr<SensorBridge> sensor;
+  if (o.sensor_port != 0)
+    sensor = std::make_unique<SensorBridge>(
+        o.sensor_port, [&session](const HandFrame& frame, const std::string& where) {
+          session.sensor_frame(frame, where);
+        });
 
   httplib::Server server;
-  server.Get("/", [](const httplib::Request&, httplib::Response& res) {
-    res.set_content(live_page(), "text/html; charset=utf-8");
+  const std::string page = live_page(session.scene_json());
+  server.Get("/", [&page](const httplib::Request&, httplib::Response& res) {
+    res.set_content(page, "text/html; charset=utf-8");
   });
   serve_events(server, session);
+  serve_hand(server, session);
   server.Post("/key", [&session](const httplib::Request& req, httplib::Response& res) {
     if (req.body != "r" && req.body != "a" && req.body != "m") {
       res.status = 400;
@@ -83,7 +127,8 @@ int live(const LiveOptions& o) {
   std::thread server_thread([&server] { server.listen_after_bind(); });
 
   const std::string url = fmt::format("http://127.0.0.1:{}/", o.port);
-  fmt::print("drapelab live {} -> {}: {} (Ctrl-C stops)\n", o.scene_file, o.out_dir, url);
+  fmt::print("drapelab live {} -> {}: {} (Ctrl-C stops){}\n", o.scene_file, o.out_dir, url,
+             sensor ? fmt::format("; sensor bridge on 127.0.0.1:{}", o.sensor_port) : "");
   std::fflush(stdout);
   if (o.open) std::system(("xdg-open " + url + " >/dev/null 2>&1 &").c_str());
 
@@ -101,6 +146,9 @@ int live(const LiveOptions& o) {
   std::signal(SIGTERM, SIG_DFL);
   server.stop();
   server_thread.join();
+  if (sensor)
+    fmt::print("drapelab live: sensor bridge: {} frames, {} malformed lines ignored\n",
+               sensor->frames(), sensor->malformed());
   fmt::print("drapelab live: {} ({}/summary.json)\n", status, o.out_dir);
   return status == "ok" || status == "stopped" ? exit_ok : exit_diverged;
 }
@@ -115,7 +163,18 @@ void add_live_command(CLI::App& app) {
   cmd->add_option("--port", o->port, "TCP port on 127.0.0.1")->required();
   cmd->add_option("--out", o->out_dir, "output folder (default out/live)");
   cmd->add_option("--set", o->overrides, "override a scene value: key.path=value")->take_all();
+  cmd->add_option("--sensor-port", o->sensor_port,
+                  "read hand frames (recording JSON Lines) on 127.0.0.1:PORT; implies --live-hands");
+  cmd->add_flag("--live-hands", o->live_hands,
+                "the page's pointer (POST /hand) and the sensor bridge drive the hands instead "
+                "of the scene's recording (always so for a scene without recorded hands)");
   cmd->add_flag("--open", o->open, "open the page in the desktop's browser");
+  cmd->footer(
+      "Examples (docs/live.md):\n"
+      "  drapelab live experiments/scenes/fig6_map.json --port 8080       # keys r a m in the page\n"
+      "  drapelab live experiments/scenes/fig2_hold.json --port 8080 --live-hands   # h: pointer hand\n"
+      "  drapelab live experiments/scenes/fig2_hold.json --port 8080 --sensor-port 9000\n"
+      "  drapelab run out/live/scene.json --out out/replay                # replay a live run");
   cmd->callback([o] {
     int code = exit_ok;
     try {

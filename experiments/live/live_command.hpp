@@ -1,6 +1,6 @@
 #pragma once
 // The `live` subcommand of drapelab: a scene run in wall-clock time and shown as it is computed
-// on a page served on 127.0.0.1 (docs/viewer.md, "Live mode").
+// on a page served on 127.0.0.1 (docs/live.md).
 namespace CLI {
 class App;
 }

@@ -1,39 +1,33 @@
 #include "experiments/live/live_session.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "core/scene/input_error.hpp"
+
+#include "core/input/input_config.hpp"
+#include "experiments/live/live_hands.hpp"
 #include "experiments/run/frame_recorder.hpp"
 #include "experiments/run/run_files.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "experiments/run/scene_simulation.hpp"
 #include "experiments/run/series_writers.hpp"
+#include "experiments/viewer/page_data.hpp"
 
 namespace drape {
 
 namespace {
 
 constexpr double frame_interval = 1.0 / 30.0;  // s of wall clock between frames
-// Behind the wall clock by more than this [s] is "cannot keep up" (docs/viewer.md, Live mode).
+// Behind the wall clock by more than this [s] is "cannot keep up" (docs/live.md).
 constexpr double behind_tolerance = 0.1;
-
-std::string base64(const void* data, std::size_t size) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  const auto* b = static_cast<const unsigned char*>(data);
-  std::string out;
-  out.reserve((size + 2) / 3 * 4);
-  for (std::size_t i = 0; i < size; i += 3) {
-    const unsigned v = (b[i] << 16) | ((i + 1 < size ? b[i + 1] : 0) << 8) |
-                       (i + 2 < size ? b[i + 2] : 0);
-    out += table[(v >> 18) & 63];
-    out += table[(v >> 12) & 63];
-    out += i + 1 < size ? table[(v >> 6) & 63] : '=';
-    out += i + 2 < size ? table[v & 63] : '=';
-  }
-  return out;
-}
+// A live hand farther than this from the scene's origin in any coordinate [m] is refused: no
+// dress form scene is larger than a room, and a stray pointer or sensor value must not hold cloth.
+constexpr double max_hand_coordinate = 10.0;
 
 // A scene without input gets an empty inline one so that live keys have a track to go into;
 // the manipulator then sees no hands, as with no input at all.
@@ -45,11 +39,61 @@ Scene with_input(Scene scene) {
   return scene;
 }
 
+bool has_hand_samples(const HandTrack& track) {
+  return track.span(Hand::Left) || track.span(Hand::Right);
+}
+
+// The grid, the pins and the dress form for the page's 3-D scene (viewer_scene.js), once.
+std::string page_scene_json(const ClothSystem& system, const Scene& scene, bool live_hands) {
+  nlohmann::json pins = nlohmann::json::array();
+  for (const GridPoint& p : scene.pins) pins.push_back({p.row, p.col});
+  nlohmann::json dummy = {{"sections", 0}, {"points", 0}, {"positions", nlohmann::json::array()}};
+  if (const Dummy* d = system.dummy()) {
+    dummy["sections"] = d->num_sections();
+    dummy["points"] = d->points();
+    for (int o = 0; o < d->size(); ++o)
+      for (int k = 0; k < 3; ++k)  // 0.1 mm, as the viewer's page_data
+        dummy["positions"].push_back(std::round(d->position(o)[k] * 1e4) / 1e4);
+  }
+  return nlohmann::json({{"rows", system.cloth().params.rows},
+                         {"cols", system.cloth().params.cols},
+                         {"pins", pins},
+                         {"dummy", dummy},
+                         {"live_hands", live_hands},
+                         {"duration", scene.duration}})
+      .dump();
+}
+
+void check_hand(Hand hand, const std::optional<HandSample>& sample, const std::string& source) {
+  if (!sample) return;
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(sample->position[k]) <= max_hand_coordinate))  // NaN fails too
+      throw InputError(source, std::string(hand == Hand::Left ? "left." : "right.") + "xyz"[k],
+                       fmt::format("{} is not a scene coordinate within +-{} m",
+                                   sample->position[k], max_hand_coordinate));
+}
+
 }  // namespace
 
-LiveSession::LiveSession(Scene scene, std::filesystem::path out_dir)
+LiveSession::LiveSession(Scene scene, std::filesystem::path out_dir, bool live_hands)
     : m_scene(with_input(std::move(scene))), m_out_dir(std::move(out_dir)) {
   m_run = std::make_unique<SceneSimulation>(m_scene);
+  HandInput& input = *m_run->input();
+  if (live_hands || !has_hand_samples(input.track)) {
+    // The scene's keys stay (at their scene times); its recorded hands, if any, give way.
+    std::vector<HandFrame> keys;
+    for (const KeyEvent& k : input.track.keys()) {
+      keys.emplace_back();
+      keys.back().t = k.t;
+      keys.back().keys = {k.key};
+    }
+    // The loop may end a step past its target by up to one step (Simulation::advance); an
+    // adaptive method's steps are not known ahead, 10 ms is taken for them (docs/live.md).
+    const double margin = m_run->options().adaptive ? 0.01 : m_run->options().dt;
+    m_live_hands = std::make_unique<LiveHands>(input.config.track, std::move(keys), margin);
+    m_live_hands->sample(0.0, input.track);
+  }
+  m_scene_json = page_scene_json(m_run->system(), m_scene, m_live_hands != nullptr);
   std::filesystem::create_directories(m_out_dir);
   const ClothSystem& system = m_run->system();
   if (system.dummy()) write_dummy_csv(m_out_dir / "dummy.csv", *system.dummy());
@@ -65,6 +109,25 @@ LiveSession::LiveSession(Scene scene, std::filesystem::path out_dir)
 }
 
 LiveSession::~LiveSession() = default;
+
+void LiveSession::hand(Hand hand, const std::optional<HandSample>& sample,
+                       const std::string& source) {
+  check_hand(hand, sample, source);
+  if (m_live_hands) m_live_hands->set(hand, sample);
+}
+
+void LiveSession::sensor_frame(const HandFrame& frame, const std::string& source) {
+  const SensorTransform& transform = m_run->input()->config.transform;
+  std::optional<HandSample> left = frame.left, right = frame.right;
+  if (left) left->position = transform.point(left->position);
+  if (right) right->position = transform.point(right->position);
+  // Both checked before either is used: a frame counts whole or not at all.
+  check_hand(Hand::Left, left, source);
+  check_hand(Hand::Right, right, source);
+  hand(Hand::Left, left, source);
+  hand(Hand::Right, right, source);
+  for (const std::string& k : frame.keys) key(k);
+}
 
 void LiveSession::key(const std::string& key) {
   std::lock_guard<std::mutex> lock(m_mutex);
@@ -89,21 +152,27 @@ void LiveSession::apply_keys() {
   const double step = m_run->options().adaptive ? 1e-3 : m_run->options().dt;
   const double t = simulation.time() + step;
   HandInput& input = *m_run->input();
-  std::vector<HandFrame> frames(1);
-  frames[0].t = (t - input.config.time.offset) / input.config.time.scale;
-  frames[0].keys = keys;
-  input.track.add_keys(frames, input.config.time);
+  if (m_live_hands) {
+    for (const std::string& k : keys) m_live_hands->add_key(t, k);  // in the track at sample()
+  } else {
+    std::vector<HandFrame> frames(1);
+    frames[0].t = (t - input.config.time.offset) / input.config.time.scale;
+    frames[0].keys = keys;
+    input.track.add_keys(frames, input.config.time);
+  }
   std::lock_guard<std::mutex> lock(m_mutex);
   for (const std::string& k : keys) m_applied_keys.emplace_back(t, k);
 }
 
-void LiveSession::publish(double rtf, bool behind) {
+void LiveSession::publish(double wall, bool behind) {
   const Simulation& simulation = m_run->simulation();
   const Eigen::VectorXd& y = simulation.state();
-  const int n = static_cast<int>(y.size() / 6);
-  std::vector<float> positions(3 * static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < 3; ++k) positions[3 * i + k] = static_cast<float>(y[6 * i + k]);
+  // y = [x; v] (core/model/state.hpp): the first 3N values are the positions.
+  std::vector<float> positions(static_cast<std::size_t>(y.size() / 2));
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    positions[i] = static_cast<float>(y[static_cast<Eigen::Index>(i)]);
+  // Little-endian float32, as JavaScript's Float32Array reads it on every browser platform.
+  const auto* bytes = reinterpret_cast<const unsigned char*>(positions.data());
   nlohmann::json hands = nlohmann::json::array();
   for (const HandStatus& h : simulation.manipulator().hands(simulation.time(), y))
     hands.push_back({{"hand", h.hand == Hand::Left ? "left" : "right"},
@@ -115,11 +184,13 @@ void LiveSession::publish(double rtf, bool behind) {
   for (const ManipulationEvent& e : simulation.manipulator().events())
     events.push_back(e.to_json(m_run->system().cloth()));
   const nlohmann::json frame = {{"t", simulation.time()},
-                                {"rtf", rtf},
+                                {"wall", wall},
+                                {"rtf", wall > 0.0 ? simulation.time() / wall : 1.0},
                                 {"behind", behind},
                                 {"rows", m_run->system().cloth().params.rows},
                                 {"cols", m_run->system().cloth().params.cols},
-                                {"positions", base64(positions.data(), positions.size() * 4)},
+                                {"positions", base64_encode(bytes, positions.size() * sizeof(float))},
+                                {"fixed", m_run->system().constraints().fixed_particles()},
                                 {"hands", hands},
                                 {"events", events}};
   auto text = std::make_shared<const std::string>(frame.dump());
@@ -137,11 +208,15 @@ std::string LiveSession::run() {
   while (running && !m_stop) {
     apply_keys();
     const double wall = std::chrono::duration<double>(clock::now() - start).count();
-    running = simulation.advance(wall);
+    double target = wall;
+    if (m_live_hands) {
+      m_live_hands->sample(simulation.time(), m_run->input()->track);
+      target = std::min(wall, m_live_hands->limit());
+    }
+    running = simulation.advance(target);
     const double sim_time = simulation.time();
     const double wall_after = std::chrono::duration<double>(clock::now() - start).count();
-    publish(wall_after > 0.0 ? sim_time / wall_after : 1.0,
-            sim_time + behind_tolerance < wall_after && !simulation.at_end());
+    publish(wall_after, sim_time + behind_tolerance < wall_after && !simulation.at_end());
     next_frame += std::chrono::duration_cast<clock::duration>(
         std::chrono::duration<double>(frame_interval));
     std::this_thread::sleep_until(next_frame);
@@ -160,29 +235,55 @@ void LiveSession::write_outputs(const std::string& status) {
       o->on_end(simulation);
   nlohmann::json summary = run_summary(*m_run, *m_energy);
   summary["status"] = status;
-  summary["live"] = {{"recording", "recording.jsonl"}, {"replay", "scene.json"}};
+  summary["live"] = {{"recording", "recording.jsonl"},
+                     {"replay", "scene.json"},
+                     {"hands", m_live_hands ? "live" : "scene"}};
   if (status != "diverged" && status != "failed")
     write_state_csv(m_out_dir / "state.csv", m_run->system(), simulation.state());
   write_json(m_out_dir / "summary.json", summary);
 
-  // The live keys in drapelab's recording format with scene times (docs/input.md).
-  std::ofstream recording = open_for_writing(m_out_dir / "recording.jsonl");
   nlohmann::json scene = m_scene.source;
-  nlohmann::json& events = scene["input"]["events"];
-  if (!events.is_array()) events = nlohmann::json::array();
-  const TimeMap& time = m_run->input()->config.time;
-  for (const auto& [t, k] : m_applied_keys) {
-    if (t > simulation.time() + 1e-9) continue;  // queued but never reached
-    recording << nlohmann::json({{"t", t}, {"keys", {k}}}).dump() << "\n";
-    events.push_back({{"t", (t - time.offset) / time.scale}, {"keys", {k}}});
-  }
+  write_recording(scene);
   // The replay scene: the live scene, its keys inline, ending where the live run stopped.
   scene["duration"] = simulation.time();
-  if (scene["input"].contains("recording") && scene["input"]["recording"].is_string())
-    scene["input"]["recording"] =
-        std::filesystem::absolute(m_scene.base_dir / scene["input"]["recording"].get<std::string>())
-            .string();
   write_json(m_out_dir / "scene.json", scene);
+}
+
+// recording.jsonl: the live input in drapelab's recording format, scene times (docs/live.md).
+// With live hands the replay scene plays it as its input.recording; otherwise the scene keeps
+// its own input and gets the live keys added to input.events.
+void LiveSession::write_recording(nlohmann::json& scene) {
+  const double end = m_run->simulation().time() + 1e-9;  // keys queued but never reached: out
+  const std::filesystem::path file = std::filesystem::absolute(m_out_dir / "recording.jsonl");
+  const InputConfig& config = m_run->input()->config;
+  Recording recording{file.string(), {}};
+  if (m_live_hands) {
+    for (HandFrame& frame : m_live_hands->recording()) {
+      if (frame.t > end) frame.keys.clear();
+      // Hand samples past the end stay: the track had them when it interpolated before it.
+      if (frame.left || frame.right || !frame.keys.empty()) recording.frames.push_back(frame);
+    }
+    InputConfig replay = config;
+    replay.recording = file.string();
+    replay.format = RecordingFormat::Drapelab;
+    replay.events.clear();
+    replay.transform = SensorTransform{};
+    replay.time = TimeMap{};
+    scene["input"] = input_config_to_json(replay);
+  } else {
+    nlohmann::json& events = scene["input"]["events"];
+    if (!events.is_array()) events = nlohmann::json::array();
+    for (const auto& [t, k] : m_applied_keys) {
+      if (t > end) continue;
+      if (recording.frames.empty() || recording.frames.back().t != t)
+        recording.frames.push_back(HandFrame{t, std::nullopt, std::nullopt, {}});
+      recording.frames.back().keys.push_back(k);
+      events.push_back({{"t", (t - config.time.offset) / config.time.scale}, {"keys", {k}}});
+    }
+    if (scene["input"].contains("recording") && scene["input"]["recording"].is_string())
+      scene["input"]["recording"] = std::filesystem::absolute(config.recording).string();
+  }
+  write_drapelab_recording(recording, file.string());
 }
 
 }  // namespace drape

@@ -70,30 +70,9 @@
     this.dirty = true;
   };
 
-  // Front: from +z (the dress form's front) looking along -z; side: from -x, so +z is to the
-  // right as in analysis/plot_state.py; 3/4: between the two, a little from above.
+  // The presets of drape.camera_preset (viewer_scene.js), shared with the live page.
   Viewer.prototype.set_camera = function (kind) {
-    var directions = { front: [0, 0, 1], side: [-1, 0, 0], three_quarter: [-0.75, 0.35, 1] };
-    var d = new THREE.Vector3().fromArray(directions[kind] || directions.front).normalize();
-    // The nearest distance at which every corner of the scene's box is in the picture.
-    var centre = this.bounds.getCenter(new THREE.Vector3()), box = this.bounds;
-    var right = new THREE.Vector3().crossVectors(d, new THREE.Vector3(0, 1, 0)).negate();
-    if (right.lengthSq() < 1e-9) right.set(1, 0, 0);
-    right.normalize();
-    var up = new THREE.Vector3().crossVectors(right, d).negate();
-    var tan_v = Math.tan(this.camera.fov * Math.PI / 360), tan_h = tan_v * this.camera.aspect;
-    var distance = 0, corner = new THREE.Vector3();
-    for (var k = 0; k < 8; ++k) {
-      corner.set(k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y, k & 4 ? box.max.z : box.min.z).sub(centre);
-      distance = Math.max(distance, corner.dot(d) + Math.max(Math.abs(corner.dot(right)) / tan_h,
-                                                             Math.abs(corner.dot(up)) / tan_v));
-    }
-    distance *= 1.06;
-    this.controls.target.copy(centre);
-    this.camera.position.copy(centre).addScaledVector(d, distance);
-    this.camera.up.set(0, 1, 0);
-    this.camera.lookAt(centre);
-    this.controls.update();
+    drape.camera_preset(this.camera, this.controls, this.bounds, kind);
     this.camera_kind = kind;
     var buttons = document.querySelectorAll('[data-camera]');
     for (var i = 0; i < buttons.length; ++i) buttons[i].classList.toggle('on', buttons[i].dataset.camera === kind);

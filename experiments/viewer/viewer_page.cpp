@@ -30,15 +30,23 @@ std::string three_file(std::string_view compiled, const std::string& relative) {
   return text.str();
 }
 
+}  // namespace
+
 void replace_mark(std::string& page, const std::string& mark, const std::string& text) {
   const size_t at = page.find(mark);
-  if (at == std::string::npos) throw std::logic_error("page.html has no mark " + mark);
+  if (at == std::string::npos) throw std::logic_error("the page template has no mark " + mark);
   page.replace(at, mark.size(), text);
 }
 
 std::string script(const std::string& code) { return "<script>\n" + code + "\n</script>\n"; }
 
-}  // namespace
+std::string three_js_scripts() {
+  // One after the other, so that a missing three.min.js is the file named.
+  const std::string three = three_file(detail::three_js, "three.min.js");
+  const std::string orbit =
+      three_file(detail::orbit_controls_js, "examples/js/controls/OrbitControls.js");
+  return script(three) + script(orbit);
+}
 
 std::string script_safe(std::string text) {
   for (size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3))
@@ -52,11 +60,7 @@ std::string viewer_page(const std::vector<ViewerRun>& runs) {
   std::string page(detail::viewer_page_html);
   replace_mark(page, "<!-- drape:css -->",
                "<style>\n" + std::string(detail::viewer_css) + "</style>");
-  // One after the other, so that a missing three.min.js is the file named.
-  const std::string three = three_file(detail::three_js, "three.min.js");
-  const std::string orbit =
-      three_file(detail::orbit_controls_js, "examples/js/controls/OrbitControls.js");
-  replace_mark(page, "<!-- drape:three -->", script(three) + script(orbit));
+  replace_mark(page, "<!-- drape:three -->", three_js_scripts());
   replace_mark(page, "<!-- drape:scripts -->",
                script(std::string(detail::viewer_scene_js)) +
                    script(std::string(detail::viewer_ui_js)) +

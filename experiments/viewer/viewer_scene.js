@@ -1,5 +1,6 @@
-// drapelab view: one run's 3-D scene (cloth, dress form, hands, markers) at a given time.
-// Reads the JSON that experiments/viewer/page_data.cpp writes (docs/viewer.md, Data encoding).
+// The 3-D scene of one cloth (cloth mesh, dress form, hands, markers), shared by `drapelab view`
+// (RunView: a recorded run at a given time, from the JSON of experiments/viewer/page_data.cpp,
+// docs/viewer.md) and `drapelab live` (experiments/live/live_main.js: the streamed frames).
 'use strict';
 
 var drape = window.drape || (window.drape = {});
@@ -35,30 +36,42 @@ drape.last_at_or_before = function (values, t) {
   return lo;
 };
 
-drape.RunView = function (run) {
-  this.run = run;
+// The scene of a cloth of spec.rows x spec.cols particles at `positions` (a Float32Array of xyz,
+// the scene keeps and draws it), with spec.pins, spec.dummy and spec.events as page_data.cpp
+// writes them. show() puts the markers and hands of one moment.
+drape.ClothScene = function (spec, positions) {
+  this.run = spec;
   this.scene = new THREE.Scene();
-  var n = run.rows * run.cols;
-  this.particles = n;
-  var f = run.frames;
-  this.quanta = new Int16Array(drape.base64_bytes(f.positions).buffer);
-  if (this.quanta.length !== 3 * n * f.count) throw new Error(run.name + ': frame data size');
-  this.positions = new Float32Array(3 * n);
-  this.bounds = new THREE.Box3();
-  var half = 32767 * f.step;
-  this.bounds.min.set(f.centre[0] - half, f.centre[1] - half, f.centre[2] - half);
-  this.bounds.max.set(f.centre[0] + half, f.centre[1] + half, f.centre[2] + half);
-  this.cloth_bounds = this.frame_bounds();
+  this.particles = spec.rows * spec.cols;
+  if (positions.length !== 3 * this.particles) throw new Error((spec.name || 'cloth') + ': positions size');
+  this.positions = positions;
   this.pin_set = {};
-  for (var p = 0; p < run.pins.length; ++p) this.pin_set[run.pins[p][0] * run.cols + run.pins[p][1]] = true;
+  for (var p = 0; p < spec.pins.length; ++p) this.pin_set[spec.pins[p][0] * spec.cols + spec.pins[p][1]] = true;
   this.add_lights();
   this.add_cloth();
   this.add_dress_form();
   this.markers = { pinned: [], fixed: [], held: [], candidate: [] };
   this.marker_radius = Math.max(0.004, 0.35 * this.spacing());
   this.hand_meshes = {};
-  this.add_attach_targets();
+  this.attach_targets = [];
+  this.set_attach_targets(spec.events);
 };
+
+drape.RunView = function (run) {
+  var f = run.frames, n = run.rows * run.cols;
+  this.quanta = new Int16Array(drape.base64_bytes(f.positions).buffer);
+  if (this.quanta.length !== 3 * n * f.count) throw new Error(run.name + ': frame data size');
+  var positions = new Float32Array(3 * n);
+  for (var i = 0; i < 3 * n; ++i) positions[i] = f.centre[i % 3] + f.step * this.quanta[i];
+  drape.ClothScene.call(this, run, positions);
+  this.bounds = new THREE.Box3();
+  var half = 32767 * f.step;
+  this.bounds.min.set(f.centre[0] - half, f.centre[1] - half, f.centre[2] - half);
+  this.bounds.max.set(f.centre[0] + half, f.centre[1] + half, f.centre[2] + half);
+  this.cloth_bounds = this.frame_bounds();
+};
+drape.RunView.prototype = Object.create(drape.ClothScene.prototype);
+drape.RunView.prototype.constructor = drape.RunView;
 
 drape.RunView.prototype.frame_bounds = function () {
   var box = new THREE.Box3(), f = this.run.frames, v = new THREE.Vector3();
@@ -70,15 +83,15 @@ drape.RunView.prototype.frame_bounds = function () {
   return box;
 };
 
-// Distance between particles (0, 0) and (0, 1) or (1, 0) of the first frame.
-drape.RunView.prototype.spacing = function () {
-  var q = this.quanta, j = this.run.cols > 1 ? 3 : 3 * this.run.cols;
+// Distance between particles (0, 0) and (0, 1) or (1, 0) at the first positions.
+drape.ClothScene.prototype.spacing = function () {
+  var q = this.positions, j = this.run.cols > 1 ? 3 : 3 * this.run.cols;
   if (this.particles < 2) return 0.01;
   var dx = q[j] - q[0], dy = q[j + 1] - q[1], dz = q[j + 2] - q[2];
-  return this.run.frames.step * Math.sqrt(dx * dx + dy * dy + dz * dz);
+  return Math.sqrt(dx * dx + dy * dy + dz * dz);
 };
 
-drape.RunView.prototype.add_lights = function () {
+drape.ClothScene.prototype.add_lights = function () {
   this.scene.add(new THREE.HemisphereLight(0xffffff, 0x8a8275, 0.55));
   var key = new THREE.DirectionalLight(0xffffff, 0.75);
   key.position.set(0.6, 1.0, 1.2);
@@ -88,7 +101,7 @@ drape.RunView.prototype.add_lights = function () {
   this.scene.add(rim);
 };
 
-drape.RunView.prototype.add_cloth = function () {
+drape.ClothScene.prototype.add_cloth = function () {
   var run = this.run, rows = run.rows, cols = run.cols, index = [];
   for (var r = 0; r + 1 < rows; ++r)
     for (var c = 0; c + 1 < cols; ++c) {
@@ -126,7 +139,7 @@ drape.RunView.prototype.add_cloth = function () {
 };
 
 // Object particles are sections x points, each section a closed ring (dummy.csv).
-drape.RunView.prototype.add_dress_form = function () {
+drape.ClothScene.prototype.add_dress_form = function () {
   var d = this.run.dummy;
   this.object_particles = null;
   if (!d.positions.length) return;
@@ -153,16 +166,18 @@ drape.RunView.prototype.add_dress_form = function () {
   this.scene.add(this.object_particles);
 };
 
-drape.RunView.prototype.add_attach_targets = function () {
-  var events = this.run.events, d = this.run.dummy;
+// The attach targets of `events` (the live page calls it again as events come).
+drape.ClothScene.prototype.set_attach_targets = function (events) {
+  var d = this.run.dummy, self = this;
+  this.attach_targets.forEach(function (m) { self.scene.remove(m); });
   this.attach_targets = [];
   for (var i = 0; i < events.length; ++i) {
     var e = events[i];
     if (e.type !== 'attach' || e.object_particle === undefined || e.object_particle < 0) continue;
     var k = 3 * e.object_particle;
     if (k + 2 >= d.positions.length) continue;
-    var marker = new THREE.Mesh(new THREE.OctahedronBufferGeometry(1.6 * this.marker_radius),
-                                new THREE.MeshPhongMaterial({ color: drape.colours.attach_target }));
+    if (!this.attach_geometry) this.attach_geometry = new THREE.OctahedronBufferGeometry(1.6 * this.marker_radius);
+    var marker = new THREE.Mesh(this.attach_geometry, new THREE.MeshPhongMaterial({ color: drape.colours.attach_target }));
     marker.position.set(d.positions[k], d.positions[k + 1], d.positions[k + 2]);
     marker.userData.t = e.t;
     this.attach_targets.push(marker);
@@ -171,7 +186,7 @@ drape.RunView.prototype.add_attach_targets = function () {
 };
 
 // The k-th sphere of a kind, made when first needed and shared geometry per kind.
-drape.RunView.prototype.marker = function (kind, k) {
+drape.ClothScene.prototype.marker = function (kind, k) {
   var list = this.markers[kind];
   if (k < list.length) return list[k];
   if (!this.marker_geometry) this.marker_geometry = new THREE.SphereBufferGeometry(1, 12, 8);
@@ -183,7 +198,7 @@ drape.RunView.prototype.marker = function (kind, k) {
   return mesh;
 };
 
-drape.RunView.prototype.place_markers = function (kind, particles) {
+drape.ClothScene.prototype.place_markers = function (kind, particles) {
   var list = this.markers[kind], p = this.positions;
   for (var k = 0; k < particles.length; ++k) {
     var i = particles[k];
@@ -193,7 +208,7 @@ drape.RunView.prototype.place_markers = function (kind, particles) {
   for (k = particles.length; k < list.length; ++k) list[k].visible = false;
 };
 
-drape.RunView.prototype.hand_mesh = function (name) {
+drape.ClothScene.prototype.hand_mesh = function (name) {
   if (!this.hand_meshes[name]) {
     var colour = name === 'left' ? drape.colours.left_hand : drape.colours.right_hand;
     // Translucent, so that the particle the hand holds shows inside it.
@@ -221,27 +236,36 @@ drape.RunView.prototype.set_time = function (t) {
   var q = this.quanta, a = k * n3, b = k1 * n3, pos = this.positions;
   for (var i = 0; i < n3; ++i)
     pos[i] = f.centre[i % 3] + f.step * ((1 - alpha) * q[a + i] + alpha * q[b + i]);
+  var fixed = f.fixed[drape.last_at_or_before(f.fixed.map(function (c) { return c.frame; }), k)];
+  var hands = this.run.hands.map(function (hand) {
+    var r = drape.last_at_or_before(hand.t, t), p = hand.positions;
+    return { name: hand.name, available: hand.t.length > 0 && hand.available[r] === 1,
+             position: [p[3 * r], p[3 * r + 1], p[3 * r + 2]], held: hand.held[r], candidate: hand.candidate[r] };
+  });
+  this.show(t, fixed ? fixed.particles : [], hands);
+  return { frame: k, frames: f.count, frame_t: times[k], ended: t > times[f.count - 1] + 1e-9 };
+};
+
+// Draws this.positions with the fixed particles (pins red, others orange), the hands (each
+// {name, available, position, held, candidate}) with their held or candidate particle, and the
+// attach targets from their time on.
+drape.ClothScene.prototype.show = function (t, fixed_particles, hands) {
+  var pos = this.positions;
   this.cloth_position.needsUpdate = true;
   this.cloth_geometry.computeVertexNormals();
   this.cloth_geometry.computeBoundingSphere();
-
-  var fixed = f.fixed[drape.last_at_or_before(f.fixed.map(function (c) { return c.frame; }), k)];
-  var pinned = [], other = [];
-  var fixed_particles = fixed ? fixed.particles : [];
+  var pinned = [], other = [], held = [], candidates = [], i;
   for (i = 0; i < fixed_particles.length; ++i)
     (this.pin_set[fixed_particles[i]] ? pinned : other).push(fixed_particles[i]);
-  var held = [], candidates = [];
-  var hands = this.run.hands;
   for (var h = 0; h < hands.length; ++h) {
     var hand = hands[h], mesh = this.hand_mesh(hand.name);
-    var r = drape.last_at_or_before(hand.t, t);
-    mesh.visible = hand.t.length > 0 && hand.available[r] === 1;
+    mesh.visible = hand.available;
     var link = mesh.userData.link, target = -1;
     if (mesh.visible) {
-      mesh.position.set(hand.positions[3 * r], hand.positions[3 * r + 1], hand.positions[3 * r + 2]);
-      target = hand.held[r] >= 0 ? hand.held[r] : hand.candidate[r];
-      if (hand.held[r] >= 0) held.push(hand.held[r]);
-      else if (hand.candidate[r] >= 0) candidates.push(hand.candidate[r]);
+      mesh.position.fromArray(hand.position);
+      target = hand.held >= 0 ? hand.held : hand.candidate;
+      if (hand.held >= 0) held.push(hand.held);
+      else if (hand.candidate >= 0) candidates.push(hand.candidate);
     }
     link.visible = target >= 0;
     if (link.visible) {
@@ -259,5 +283,30 @@ drape.RunView.prototype.set_time = function (t) {
   this.place_markers('candidate', candidates);
   for (i = 0; i < this.attach_targets.length; ++i)
     this.attach_targets[i].visible = t >= this.attach_targets[i].userData.t;
-  return { frame: k, frames: f.count, frame_t: times[k], ended: t > times[f.count - 1] + 1e-9 };
+};
+
+// Puts `camera` and `controls` at a preset looking at `bounds`. Front: from +z (the dress form's
+// front) looking along -z; side: from -x, so +z is to the right as in analysis/plot_state.py;
+// 3/4: between the two, a little from above. The nearest distance that shows every corner.
+drape.camera_preset = function (camera, controls, bounds, kind) {
+  var directions = { front: [0, 0, 1], side: [-1, 0, 0], three_quarter: [-0.75, 0.35, 1] };
+  var d = new THREE.Vector3().fromArray(directions[kind] || directions.front).normalize();
+  var centre = bounds.getCenter(new THREE.Vector3()), box = bounds;
+  var right = new THREE.Vector3().crossVectors(d, new THREE.Vector3(0, 1, 0)).negate();
+  if (right.lengthSq() < 1e-9) right.set(1, 0, 0);
+  right.normalize();
+  var up = new THREE.Vector3().crossVectors(right, d).negate();
+  var tan_v = Math.tan(camera.fov * Math.PI / 360), tan_h = tan_v * camera.aspect;
+  var distance = 0, corner = new THREE.Vector3();
+  for (var k = 0; k < 8; ++k) {
+    corner.set(k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y, k & 4 ? box.max.z : box.min.z).sub(centre);
+    distance = Math.max(distance, corner.dot(d) + Math.max(Math.abs(corner.dot(right)) / tan_h,
+                                                           Math.abs(corner.dot(up)) / tan_v));
+  }
+  distance *= 1.06;
+  controls.target.copy(centre);
+  camera.position.copy(centre).addScaledVector(d, distance);
+  camera.up.set(0, 1, 0);
+  camera.lookAt(centre);
+  controls.update();
 };

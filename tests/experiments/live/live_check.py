@@ -1,4 +1,4 @@
-"""Checks `drapelab live` end to end over its protocol (docs/viewer.md, "Live mode").
+"""Checks `drapelab live` end to end over its protocol (docs/live.md).
 
 Starts it on a free 127.0.0.1 port with a scene, reads frames from GET /events, presses `m`
 through POST /key, stops it with SIGINT, and checks that summary.json has the key's event and
@@ -12,14 +12,9 @@ import signal
 import socket
 import subprocess
 import sys
-import time
 import urllib.request
 
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+from live_client import free_port
 
 
 def main():

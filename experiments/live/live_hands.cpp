@@ -1,0 +1,76 @@
+#include "experiments/live/live_hands.hpp"
+
+#include <algorithm>
+
+namespace drape {
+
+namespace {
+
+const std::optional<HandSample>& sample_of(const HandFrame& frame, Hand hand) {
+  return hand == Hand::Left ? frame.left : frame.right;
+}
+
+}  // namespace
+
+LiveHands::LiveHands(TrackPolicy policy, std::vector<HandFrame> keys, double margin)
+    : m_policy(policy), m_keys(std::move(keys)), m_margin(margin) {}
+
+void LiveHands::set(Hand hand, std::optional<HandSample> sample) {
+  std::lock_guard<std::mutex> lock(m_mutex);
+  m_latest[hand == Hand::Left ? 0 : 1] = sample;
+}
+
+void LiveHands::add_key(double t, const std::string& key) {
+  HandFrame frame;
+  frame.t = t;
+  frame.keys = {key};
+  m_keys.push_back(std::move(frame));
+}
+
+// A new sample of a hand changes the interpolation back to the sample before its last one (the
+// tangent at the last sample, docs/input.md "Interpolation"), unless it starts a new run, which
+// it must once the last sample is max_gap older than any later sample can be.
+double LiveHands::hand_limit(Hand hand, double next_sample) const {
+  const auto usable = [&](const HandFrame& f) {
+    const auto& s = sample_of(f, hand);
+    return s && !(s->inferred && m_policy.inferred == InferredPolicy::Drop);
+  };
+  auto last = std::find_if(m_frames.rbegin(), m_frames.rend(), usable);
+  if (last == m_frames.rend() || next_sample - last->t >= m_policy.max_gap)
+    return std::numeric_limits<double>::infinity();
+  auto before = std::find_if(last + 1, m_frames.rend(), usable);
+  if (before == m_frames.rend() || last->t - before->t > m_policy.max_gap) return last->t;
+  return before->t;
+}
+
+void LiveHands::sample(double now, HandTrack& track) {
+  HandFrame frame;
+  frame.t = now + lead;
+  {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    frame.left = m_latest[0];
+    frame.right = m_latest[1];
+  }
+  // Only later times (the track needs distinct knots) and only frames that say something.
+  if ((frame.left || frame.right) && (m_frames.empty() || frame.t > m_frames.back().t))
+    m_frames.push_back(std::move(frame));
+  track = HandTrack(m_frames, SensorTransform{}, TimeMap{}, m_policy);
+  track.add_keys(m_keys, TimeMap{});
+  const double next = m_frames.empty() ? now : m_frames.back().t;
+  m_limit = std::min(hand_limit(Hand::Left, next), hand_limit(Hand::Right, next)) - m_margin;
+}
+
+std::vector<HandFrame> LiveHands::recording() const {
+  std::vector<HandFrame> all = m_frames;
+  for (const HandFrame& key : m_keys) {
+    auto at = std::lower_bound(all.begin(), all.end(), key.t,
+                               [](const HandFrame& f, double t) { return f.t < t; });
+    if (at != all.end() && at->t == key.t)
+      at->keys.insert(at->keys.end(), key.keys.begin(), key.keys.end());
+    else
+      all.insert(at, key);
+  }
+  return all;
+}
+
+}  // namespace drape

@@ -1,0 +1,51 @@
+#pragma once
+// The hands of a live run driven from the page's pointer or a sensor bridge (docs/live.md, "Live
+// hands"): the latest position of each hand, sampled into a growing hand track a little ahead of
+// the simulation, so that the track never changes where the simulation has already been and a
+// replay of the recorded frames gives the same run.
+#include <limits>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include "core/input/hand_track.hpp"
+
+namespace drape {
+
+/// Live hand samples in the scene frame and scene time, and the track built from them.
+class LiveHands {
+ public:
+  /// Scene time [s] between receiving a hand position and the sample that puts it in the track:
+  /// the look-ahead that keeps the track fixed behind the simulation (docs/live.md).
+  static constexpr double lead = 0.1;
+
+  /// `keys` are the scene's own keys (scene time); `margin` is the longest step the loop takes
+  /// past its target (the integrator's fixed dt).
+  LiveHands(TrackPolicy policy, std::vector<HandFrame> keys, double margin);
+
+  /// The latest position of a hand (scene frame); nullopt: the hand is not tracked. Any thread.
+  void set(Hand hand, std::optional<HandSample> sample);
+  /// A key pressed at scene time t (simulation thread).
+  void add_key(double t, const std::string& key);
+  /// Simulation thread, between advances at scene time `now`: adds a frame with the latest hands
+  /// at `now + lead` and rebuilds `track` from every frame and key.
+  void sample(double now, HandTrack& track);
+  /// The time the simulation may advance to: before the stretch of the track that the next
+  /// sample can still change (+infinity when no hand constrains it).
+  double limit() const { return m_limit; }
+  /// Every hand frame and key so far, time-ordered, frames at equal times merged.
+  std::vector<HandFrame> recording() const;
+
+ private:
+  double hand_limit(Hand hand, double next_sample) const;
+
+  TrackPolicy m_policy;
+  std::vector<HandFrame> m_keys;
+  double m_margin;
+  std::mutex m_mutex;  ///< guards m_latest
+  std::optional<HandSample> m_latest[2];
+  std::vector<HandFrame> m_frames;
+  double m_limit = std::numeric_limits<double>::infinity();
+};
+
+}  // namespace drape

@@ -1,0 +1,117 @@
+// LiveHands (experiments/live/live_hands.hpp): the live track never changes where the simulation
+// may already be, so that a replay of the recorded frames is the same run (docs/live.md).
+#include "experiments/live/live_hands.hpp"
+
+#include <cmath>
+#include <gtest/gtest.h>
+
+namespace drape {
+namespace {
+
+constexpr double margin = 2e-4;
+
+HandSample at(double x, double y, double z) { return HandSample{Vec3(x, y, z), false}; }
+
+TEST(LiveHands, NoHandNoLimitNoFrames) {
+  LiveHands hands(TrackPolicy{}, {}, margin);
+  HandTrack track;
+  hands.sample(0.0, track);
+  EXPECT_TRUE(std::isinf(hands.limit()));
+  EXPECT_TRUE(hands.recording().empty());
+  EXPECT_FALSE(track.motion(Hand::Right, 1.0));
+}
+
+TEST(LiveHands, SamplesLeadTheSimulationAndLimitIsTheSampleBeforeTheLast) {
+  LiveHands hands(TrackPolicy{}, {}, margin);
+  HandTrack track;
+  hands.set(Hand::Right, at(0.1, 1.0, 0.3));
+  hands.sample(0.0, track);
+  EXPECT_DOUBLE_EQ(hands.limit(), LiveHands::lead - margin);  // one sample: its own time
+  hands.sample(0.03, track);
+  EXPECT_DOUBLE_EQ(hands.limit(), LiveHands::lead - margin);  // the sample before the last
+  hands.sample(0.03, track);  // no time passed: no new knot
+  hands.sample(0.06, track);
+  EXPECT_DOUBLE_EQ(hands.limit(), 0.03 + LiveHands::lead - margin);
+  const auto frames = hands.recording();
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_DOUBLE_EQ(frames[2].t, 0.06 + LiveHands::lead);
+  const auto m = track.motion(Hand::Right, 0.12);
+  ASSERT_TRUE(m);
+  EXPECT_TRUE(m->available);
+  EXPECT_EQ(m->position, Vec3(0.1, 1.0, 0.3));
+}
+
+// The invariant the live loop relies on: after each new sample the track is bit-identical to
+// the previous one up to the previous limit (plus the margin the loop may overshoot by).
+TEST(LiveHands, NewSampleLeavesTheTrackBeforeTheLimitUnchanged) {
+  TrackPolicy policy;
+  policy.smoothing.filter = SmoothingFilter::OneEuro;  // causal: must not break the invariant
+  LiveHands hands(policy, {}, margin);
+  HandTrack before, after;
+  double now = 0.0, previous_limit = 0.0;
+  hands.set(Hand::Left, at(0.0, 1.0, 0.2));
+  for (int k = 0; k < 40; ++k) {
+    hands.set(Hand::Right, at(0.1 * std::sin(0.7 * k), 1.0 + 0.05 * std::cos(1.3 * k), 0.3));
+    if (k == 20) hands.set(Hand::Left, std::nullopt);  // the left hand is lost: a gap
+    hands.sample(now, after);
+    if (k > 0) {
+      const double limit = previous_limit + margin;
+      for (double t = 0.0; t <= limit; t += 0.0037)
+        for (const Hand h : {Hand::Left, Hand::Right}) {
+          const auto a = before.motion(h, t), b = after.motion(h, t);
+          ASSERT_EQ(a.has_value(), b.has_value()) << "t = " << t;
+          if (!a) continue;
+          EXPECT_EQ(a->available, b->available) << "t = " << t;
+          EXPECT_EQ(a->position, b->position) << "t = " << t;
+          EXPECT_EQ(a->velocity, b->velocity) << "t = " << t;
+        }
+    }
+    before = after;
+    previous_limit = hands.limit();
+    now += 0.021 + 0.02 * (k % 3);  // uneven steps, as the wall clock gives them
+    now = std::min(now, hands.limit());
+  }
+}
+
+TEST(LiveHands, AHandGoneLongerThanMaxGapNoLongerLimits) {
+  TrackPolicy policy;
+  policy.max_gap = 0.15;
+  LiveHands hands(policy, {}, margin);
+  HandTrack track;
+  hands.set(Hand::Right, at(0.0, 1.0, 0.3));
+  hands.sample(0.0, track);
+  hands.sample(0.05, track);
+  hands.set(Hand::Right, std::nullopt);
+  hands.sample(0.1, track);  // no hand: no frame; the last sample (0.15) still limits
+  EXPECT_DOUBLE_EQ(hands.limit(), LiveHands::lead - margin);
+  hands.set(Hand::Left, at(0.0, 1.0, 0.3));
+  hands.sample(0.2, track);  // 0.3 - 0.15 = max_gap: any later right sample starts a new run
+  EXPECT_DOUBLE_EQ(hands.limit(), 0.3 - margin);  // the left hand's only sample
+}
+
+TEST(LiveHands, RecordingMergesKeysIntoFramesInTimeOrder) {
+  HandFrame scene_key;
+  scene_key.t = 0.5;
+  scene_key.keys = {"m"};
+  LiveHands hands(TrackPolicy{}, {scene_key}, margin);
+  HandTrack track;
+  hands.set(Hand::Right, at(0.0, 1.0, 0.3));
+  hands.sample(0.0, track);  // a frame at 0.1
+  hands.add_key(0.1, "r");   // at the frame's time: merged into it
+  hands.add_key(0.05, "a");
+  hands.sample(0.02, track);  // a frame at 0.12
+  const auto frames = hands.recording();
+  ASSERT_EQ(frames.size(), 4u);
+  EXPECT_DOUBLE_EQ(frames[0].t, 0.05);
+  EXPECT_EQ(frames[0].keys, std::vector<std::string>{"a"});
+  EXPECT_TRUE(frames[1].right);
+  EXPECT_EQ(frames[1].keys, std::vector<std::string>{"r"});
+  EXPECT_DOUBLE_EQ(frames[2].t, 0.12);
+  EXPECT_EQ(frames[3].keys, std::vector<std::string>{"m"});
+  ASSERT_EQ(track.keys().size(), 3u);
+  EXPECT_EQ(track.keys()[0].key, "a");
+  EXPECT_EQ(track.keys()[2].key, "m");
+}
+
+}  // namespace
+}  // namespace drape
