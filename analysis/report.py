@@ -37,6 +37,11 @@ TABLE_COLUMNS = (
 # The summary's method x scene tables: column, title, unit, scale to that unit.
 SUMMARY_METRICS = (
     ("vibration_rms_events", "Vibration after the manipulations (largest event window)", "mm", 1e3),
+    ("vibration_rms_after_hold", "Vibration after a hold", "mm", 1e3),
+    ("vibration_rms_after_release", "Vibration after a release", "mm", 1e3),
+    ("vibration_rms_after_attach", "Vibration after an attach", "mm", 1e3),
+    ("vibration_rms_after_attach_fixed", "Vibration after an attached particle is fixed", "mm", 1e3),
+    ("vibration_rms_after_map", "Vibration after a map", "mm", 1e3),
     ("vibration_rms_final", "Vibration over the last 0.5 s", "mm", 1e3),
     ("slow_motion_rms_final", "Slow motion over the last 0.5 s", "mm", 1e3),
     ("error_rms", "RMS error of the final positions against the reference", "mm", 1e3),

@@ -9,6 +9,8 @@ from . import runfiles, spectral
 # below which cloth rests. The cutoff between slow motion and vibration comes from the model
 # (spectral.model_frequencies).
 VIBRATION_WINDOW = 0.5
+# The events whose windows get a vibration column each (vibration_rms_after_<kind>).
+EVENT_KINDS = ("hold", "release", "attach", "attach_fixed", "map")
 SETTLE_SPEED = 0.01
 
 
@@ -106,6 +108,8 @@ def vibration(run, summary, window=VIBRATION_WINDOW):
     for k, t0 in enumerate(times):
         t1 = min(t0 + window, times[k + 1] if k + 1 < len(times) else end, end)
         windows.append(vibration_window(after_events, t0, t1, cutoff, hands))
+        windows[-1]["events"] = "+".join(sorted({e["type"] for e in summary.get("events", [])
+                                                 if e.get("type") != "ignored" and float(e["t"]) == t0}))
     if trace is None:  # no trace.csv: the last and the holding windows have no frames
         trace = {"t": np.empty(0)}
     final = vibration_window(trace, max(end - window, 0.0), end, cutoff, hands)
@@ -118,6 +122,11 @@ def vibration(run, summary, window=VIBRATION_WINDOW):
     out["vibration_rms_events"] = worst_event.get("vibration_rms", math.nan)
     out["slow_motion_rms_events"] = worst_event.get("slow_motion_rms", math.nan)
     out["vibration_sample_hz_events"] = worst_event.get("sample_hz", math.nan)
+    # Per kind of event (the largest window that starts with one): which manipulation excites
+    # the vibration, and whether a remedy for it works (docs/findings.md).
+    for kind in EVENT_KINDS:
+        of_kind = [w["vibration_rms"] for w in events if kind in w["events"].split("+")]
+        out[f"vibration_rms_after_{kind}"] = max(of_kind, default=math.nan)
     # Steady holding: from `window` seconds after a hold (its transient gone) to the next event;
     # vibration that follows the hand here, with hand_jitter_rms, is the sensor's.
     holding = []
