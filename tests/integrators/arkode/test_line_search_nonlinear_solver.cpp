@@ -113,9 +113,13 @@ TEST(LineSearchNonlinearSolver, SwingingSheetAtOneThirtiethSecond) {
   expect_sheet_runs(1.0, implicit_tables());
 }
 
-// Not yet: failures at 100x were not measured table by table (issue #13 notes).
-TEST(LineSearchNonlinearSolver, DISABLED_StiffSwingingSheetAtOneThirtiethSecond) {
-  expect_sheet_runs(100.0, implicit_tables());
+// At 100x stiffness, the tables measured with no failure there (docs/integrators.md) that
+// finish in seconds; the stages take 2-5 times the iterations of the shipped stiffness.
+TEST(LineSearchNonlinearSolver, StiffSwingingSheetAtOneThirtiethSecond) {
+  expect_sheet_runs(100.0, {{"arkode-dirk", "SDIRK_2_1_2"},
+                            {"arkode-dirk", "TRBDF2_3_3_2"},
+                            {"arkode-dirk", "KVAERNO_4_2_3"},
+                            {"arkode-dirk", "CASH_5_3_4"}});
 }
 
 // Long damped runs settle where the sheet's forces balance: zero velocity and zero force on
