@@ -71,11 +71,11 @@ struct SheetCase {
   const char* table;
 };
 
-// The tables that run the sheet at 1/30 s with no failure (docs/integrators.md, "Stages as
-// minimisation", measured table by table). SDIRK_5_3_4, KVAERNO_7_4_5, ARK548L2SA_DIRK_8_4_5,
-// ARK437L2SA_DIRK_7_3_4, QESDIRK436L2SA_6_3_4, ESDIRK437L2SA_7_3_4 and the two ESDIRK547 tables
-// gain energy at this step with their stages solved (stable at 1/120 s): no stage solver can
-// make them pass, so they are left out here.
+// The tables that run the sheet at 1/30 s with no failure (docs/integrators.md, "Measured on
+// the swinging sheet"). ESDIRK437L2SA_7_3_4 gains energy at this step with its stages solved
+// (stable at 1/120 s), and so, measured, do SDIRK_5_3_4, QESDIRK436L2SA_6_3_4 and the two
+// ESDIRK547 tables: no stage solver can make them pass. KVAERNO_7_4_5, ARK548L2SA_DIRK_8_4_5
+// and ARK437L2SA_DIRK_7_3_4 did not finish a measurement (docs).
 std::vector<SheetCase> implicit_tables() {
   std::vector<SheetCase> cases;
   for (const char* table :
@@ -84,6 +84,10 @@ std::vector<SheetCase> implicit_tables() {
         "ARK548L2SAb_DIRK_8_4_5", "ESDIRK324L2SA_4_2_3", "ESDIRK325L2SA_5_2_3",
         "ESDIRK32I5L2SA_5_2_3", "ESDIRK436L2SA_6_3_4", "ESDIRK43I6L2SA_6_3_4"})
     cases.push_back({"arkode-dirk", table});
+  // IMEX pairs (the springs implicit): ARK324L2SA_4_2_3 halves one step (a stage whose root is
+  // a saddle of the potential), ARK437L2SA_7_3_4 and ARK548L2SA_8_4_5 gain energy.
+  for (const char* pair : {"ARK436L2SA_6_3_4", "ARK548L2SAb_8_4_5"})
+    cases.push_back({"arkode-imex", pair});
   return cases;
 }
 
