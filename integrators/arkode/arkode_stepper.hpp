@@ -19,10 +19,11 @@ namespace drape {
 /// arkode-erk: f_E = y', no f_I (ARKStep's explicit mode, right for every table, unlike ERKStep
 /// 6.4.1). arkode-dirk: f_I = y', no f_E. arkode-imex: f_I = [v; M^-1 F_springs] (stiff),
 /// f_E = [0; M^-1 (gravity + air damping + collision)]. Implicit stages are solved, by default
-/// (`nonlinear_solver` = line-search), as the minimisation of their incremental potential by
-/// Newton's method with a line search (line_search_nonlinear_solver.hpp), or (`newton`) by
-/// ARKODE's Newton method with GMRES, the analytic Jacobian-times-vector and the reduced 3N
-/// system as the preconditioner (reduced_newton_solver.hpp). Fixed or error-controlled steps.
+/// (`nonlinear_solver` = newton), by ARKODE's Newton method with GMRES, the analytic
+/// Jacobian-times-vector and the reduced 3N system as the preconditioner
+/// (reduced_newton_solver.hpp), or (`line-search`) as the minimisation of their incremental
+/// potential by Newton's method with a line search (line_search_nonlinear_solver.hpp). Fixed or
+/// error-controlled steps.
 ///
 /// arkode-dirk fixes the contact set over each step (Collision::pair_contacts): each cloth
 /// particle keeps the contact of the step start (its nearest object particle, or the surface),

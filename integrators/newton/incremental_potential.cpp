@@ -1,5 +1,7 @@
 #include "integrators/newton/incremental_potential.hpp"
 
+#include <cmath>
+
 #include "core/forces/forces.hpp"
 
 namespace drape {
@@ -47,6 +49,11 @@ void IncrementalPotential::state_of(ConstVecRef v, VecRef z) const {
 }
 
 double IncrementalPotential::value(ConstVecRef z) const {
+  double magnitude = 0.0;
+  return value(z, magnitude);
+}
+
+double IncrementalPotential::value(ConstVecRef z, double& magnitude) const {
   const Eigen::Index n3 = z.size() / 2;
   const auto x = z.head(n3), v = z.tail(n3);
   const auto& fixed = m_system.constraints().mask();
@@ -61,8 +68,10 @@ double IncrementalPotential::value(ConstVecRef z) const {
   }
   const EnergyBreakdown u = m_system.energy(x, v);
   double e = 0.5 * mass * inertia;
+  magnitude = e;
   if (springs_part) {
     e += u.spring;
+    magnitude += u.spring;
     const SpringSet& springs = m_system.cloth().springs;
     const double c = m_system.cloth().params.damping_spring;
     double dissipation = 0.0;
@@ -72,10 +81,14 @@ double IncrementalPotential::value(ConstVecRef z) const {
       dissipation += rate * rate;
     }
     e += m_gamma * 0.5 * c * dissipation;
+    magnitude += m_gamma * 0.5 * c * dissipation;
   }
   // Air damping on fixed particles is no function of the unknowns: left out like their inertia.
-  if (rest_part)
-    e += u.gravity + u.collision + m_gamma * 0.5 * m_system.cloth().params.damping_air * air;
+  if (rest_part) {
+    const double rest = u.collision + m_gamma * 0.5 * m_system.cloth().params.damping_air * air;
+    e += u.gravity + rest;
+    magnitude += std::abs(u.gravity) + rest;
+  }
   return e;
 }
 

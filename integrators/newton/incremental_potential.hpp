@@ -36,6 +36,9 @@ class IncrementalPotential {
   void state_of(ConstVecRef v, VecRef z) const;
   /// E_k at the state z (whose free positions follow its velocities).
   double value(ConstVecRef z) const;
+  /// E_k at z, and in `magnitude` the sum of its terms' absolute values: E_k's round-off is
+  /// about machine epsilon times that, whatever E_k itself.
+  double value(ConstVecRef z, double& magnitude) const;
   /// g = M (v - a_v) - gamma F(x, v) on free particles, zero on fixed ones (3N).
   void gradient(ConstVecRef z, VecRef g) const;
   double gamma() const { return m_gamma; }

@@ -65,14 +65,19 @@ TEST(ButcherTableau, OnlyArkodeDirkTakesAnInlineTable) {
   EXPECT_EQ(to_json(o).at("table"), implicit_midpoint);
 }
 
-class UserTableOrder : public ::testing::TestWithParam<std::pair<const char*, int>> {};
+struct UserTableCase {
+  const char* name;
+  int order;
+  double t_end, dt0;
+};
+
+class UserTableOrder : public ::testing::TestWithParam<UserTableCase> {};
 
 TEST_P(UserTableOrder, FixedStepErrorHasTheTableOrder) {
-  const auto [name, order] = GetParam();
+  const auto [name, order, t_end, dt0] = GetParam();
   const nlohmann::json table = std::string(name) == "backward_euler" ? backward_euler : implicit_midpoint;
   auto s = testing::pinned_test_cloth();
   const Eigen::VectorXd y0 = testing::shaken_state(*s);
-  const double t_end = 0.05;
   IntegratorOptions exact;
   exact.name = "arkode-erk";
   exact.table = "ARKODE_FEHLBERG_13_7_8";
@@ -82,7 +87,7 @@ TEST_P(UserTableOrder, FixedStepErrorHasTheTableOrder) {
   const Eigen::VectorXd reference = testing::run_until(*reference_method, t_end);
   std::vector<double> dts, errors;
   for (int k = 0; k < 4; ++k) {
-    dts.push_back(1e-3 / (1 << k));
+    dts.push_back(dt0 / (1 << k));
     const IntegratorOptions o = read_integrator_options(
         {{"name", "arkode-dirk"}, {"dt", dts.back()}, {"table", table}, {"nonlinear_solver", "line-search"}, {"rtol", 1e-12},
          {"atol", 1e-14}},
@@ -96,9 +101,13 @@ TEST_P(UserTableOrder, FixedStepErrorHasTheTableOrder) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Tables, UserTableOrder,
-                         // backward_euler (order 1) failed its fit: not yet resolved.
-                         ::testing::Values(std::make_pair("implicit_midpoint", 2)),
-                         [](const auto& test) { return std::string(test.param.first); });
+                         // Backward Euler damps a mode of frequency w by about h w^2 t / 2: on the
+                         // shaken cloth (w up to about 450 rad/s) that is 5 at dt = 1e-3 over
+                         // 0.05 s, and the error of the damped fast modes, not h, set the measured
+                         // slope (0.67). Its asymptotic range needs h w^2 t << 1: 0.005 s from 1e-4.
+                         ::testing::Values(UserTableCase{"backward_euler", 1, 0.005, 1e-4},
+                                           UserTableCase{"implicit_midpoint", 2, 0.05, 1e-3}),
+                         [](const auto& test) { return std::string(test.param.name); });
 
 }  // namespace
 }  // namespace drape
