@@ -69,9 +69,10 @@ namespace drape {
 /// moves onto p_o. `surface`: with the radial gap g = r_h - R(y, theta) to the interpolated
 /// surface (Dummy::surface_gap) and g < delta, energy k (delta - g)^2 / 2 and force
 /// k (delta - g) grad g; a particle inside moves radially onto the surface. `smooth`: with the
-/// C2 gap G of SmoothSurface, energy k/(3 delta) (delta - G)^3 for G < delta, its exact
-/// Hessian (projected to positive semi-definite for the definite Jacobian), and a particle
-/// inside moves onto G = 0 along grad G. All remove the inward normal velocity of a corrected
+/// C2 gap G of SmoothSurface, energy k/(3 delta) (delta - G)^3 for 0 <= G < delta, continued
+/// quadratically inside (smooth_contact.hpp), its exact Hessian (projected to positive
+/// semi-definite for the definite Jacobian), and a particle inside moves onto G = 0 along
+/// grad G. All remove the inward normal velocity of a corrected
 /// particle.
 ///
 /// Contact pairing (the implicit integrators' contact set of a step, docs/integrators.md):

@@ -33,9 +33,75 @@ GapTerm smooth_max(const GapTerm& a, const GapTerm& b, double w) {
   return out;
 }
 
+// min(a, b) rounded the same way: -smax(-a, -b).
+GapTerm smooth_min(const GapTerm& a, const GapTerm& b, double w) {
+  const GapTerm m = smooth_max({-a.value, -a.gradient, -a.hessian}, {-b.value, -b.gradient, -b.hessian}, w);
+  return {-m.value, -m.gradient, -m.hessian};
+}
+
+// The paraboloid's first-order distance f / |grad f|, f = side (y - apex) + r^2 / (2 rho) with r
+// the horizontal distance from the cap's axis: |grad f| = sqrt(1 + r^2 / rho^2) depends on r
+// only, so the quotient is a smooth function of the point.
+GapTerm cap_gap(const SmoothSurface::DomeCap& c, const Vec3& p) {
+  const Vec3 u(p.x() - c.cx, 0.0, p.z() - c.cz);
+  const double q = u.squaredNorm(), rho2 = c.rho * c.rho;
+  const double f = c.side * (p.y() - c.apex) + q / (2.0 * c.rho);
+  const Vec3 grad_f = u / c.rho + c.side * Vec3::UnitY();
+  Mat3 hess_f = Mat3::Zero();
+  hess_f(0, 0) = hess_f(2, 2) = 1.0 / c.rho;
+  const double S = 1.0 / std::sqrt(1.0 + q / rho2), S3 = S * S * S;
+  const Vec3 grad_S = -S3 / rho2 * u;
+  Mat3 hess_S = (3.0 * S3 * S * S / (rho2 * rho2)) * u * u.transpose();
+  hess_S(0, 0) -= S3 / rho2;
+  hess_S(2, 2) -= S3 / rho2;
+  return {f * S, S * grad_f + f * grad_S,
+          S * hess_f + grad_f * grad_S.transpose() + grad_S * grad_f.transpose() + f * hess_S};
+}
+
 }  // namespace
 
-SmoothSurface::SmoothSurface(const DummySections& s) : m_y(s.y), m_radius(s.radius) {
+SmoothSurface::SmoothSurface(const DummySections& s) {
+  build(s);
+  // An end whose sections lean flatter than kDomeSlope is a dome (a sphere's pole, a head): the
+  // slope-scaled radial gap there is far below the distance away from the surface (it is the
+  // distance to the tangent plane at the same height), which would put an invisible shelf of
+  // width about P delta around the pole. Such an end is cut at the first section steep enough
+  // and closed by a paraboloid cap instead of the end plane.
+  const int n = s.num_sections();
+  int top = 0, bottom = n - 1;
+  while (bottom - top > 3 && m_profile(top, 3) > kDomeSlope) ++top;
+  while (bottom - top > 3 && m_profile(bottom, 3) > kDomeSlope) --bottom;
+  if (top == 0 && bottom == n - 1) return;
+  DummySections trimmed;
+  trimmed.y.assign(s.y.begin() + top, s.y.begin() + bottom + 1);
+  trimmed.cx.assign(s.cx.begin() + top, s.cx.begin() + bottom + 1);
+  trimmed.cz.assign(s.cz.begin() + top, s.cz.begin() + bottom + 1);
+  trimmed.radius = s.radius.middleRows(top, bottom - top + 1);
+  build(trimmed);
+  if (top > 0) m_caps[0] = dome_cap(0);
+  if (bottom < n - 1) m_caps[1] = dome_cap(bottom - top);
+}
+
+// The paraboloid of revolution about the end section's centre through its mean radius Rm with
+// the stack's mean slope P = |dRm/dy| there (curvature radius rho = Rm P at the ring, apex
+// Rm / (2 P) beyond the end section). P is taken at least 1, so that the cap rises at most
+// half its ring radius.
+SmoothSurface::DomeCap SmoothSurface::dome_cap(int k) const {
+  const detail::SplinePoint mean = along_height(locate(m_y[k]), m_profile, m_profile_yy, 2);
+  const double slope = std::max(std::abs(mean.d1), 1.0);
+  DomeCap cap;
+  cap.dome = true;
+  cap.side = k == 0 ? 1.0 : -1.0;
+  cap.rho = m_profile(k, 2) * slope;
+  cap.apex = m_y[k] + cap.side * m_profile(k, 2) / (2.0 * slope);
+  cap.cx = m_profile(k, 0);
+  cap.cz = m_profile(k, 1);
+  return cap;
+}
+
+void SmoothSurface::build(const DummySections& s) {
+  m_y = s.y;
+  m_radius = s.radius;
   const int n = s.num_sections(), m = s.points();
   m_h_theta = kTwoPi / m;
   m_sections_per_metre = (n - 1) / (m_y.front() - m_y.back());
@@ -202,8 +268,11 @@ SmoothGap SmoothSurface::gap(const Vec3& p) const {
   side.hessian(1, 1) += axis_curvature;
   side.gradient = J.transpose() * gq;
 
-  const GapTerm top{p.y() - m_y.front(), ey, Mat3::Zero()};
-  const GapTerm bottom{m_y.back() - p.y(), -ey, Mat3::Zero()};
+  GapTerm top{p.y() - m_y.front(), ey, Mat3::Zero()};
+  GapTerm bottom{m_y.back() - p.y(), -ey, Mat3::Zero()};
+  // A dome end: the union of the paraboloid's body and the half-space below the end plane.
+  if (m_caps[0].dome) top = smooth_min(cap_gap(m_caps[0], p), top, m_width);
+  if (m_caps[1].dome) bottom = smooth_min(cap_gap(m_caps[1], p), bottom, m_width);
   const GapTerm closed = smooth_max(smooth_max(side, top, m_width), bottom, m_width);
   return {closed.value, closed.gradient, closed.hessian};
 }

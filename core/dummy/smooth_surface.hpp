@@ -23,9 +23,20 @@ struct SmoothGap {
 /// r_h measured from the spline axis c(y), s(y) = 1 / sqrt(1 + P(y)^2) a slope scale and smax
 /// a C2 smooth maximum that closes the stack with its top and bottom planes. Near the axis
 /// (r_h < axis_radius()) r~ turns into an even polynomial and the angular part of R fades out,
-/// so that G stays C2 there too. Every coefficient is computed once, at construction.
+/// so that G stays C2 there too. A dome end (sections flatter than kDomeSlope, a sphere's pole)
+/// is cut at the first steep enough section and its plane term becomes the smooth minimum of
+/// that plane and a paraboloid cap's gap. Every coefficient is computed once, at construction.
 class SmoothSurface {
  public:
+  /// A dome end's paraboloid of revolution: side (y - apex) + r^2 / (2 rho) = 0, r the horizontal
+  /// distance from (cx, cz); side = +1 at the top, -1 at the bottom.
+  struct DomeCap {
+    bool dome = false;
+    double side = 1.0, apex = 0.0, rho = 1.0, cx = 0.0, cz = 0.0;
+  };
+  /// Ends whose sections lean flatter than this slope |dR/dy| (the sphere's poles) are domes.
+  static constexpr double kDomeSlope = 3.0;
+
   explicit SmoothSurface(const DummySections& sections);
 
   /// G, grad G and the Hessian of G at p (C2 everywhere).
@@ -50,6 +61,8 @@ class SmoothSurface {
   struct RadiusPoint {
     double r = 0.0, r_t = 0.0, r_tt = 0.0, r_y = 0.0, r_yt = 0.0, r_yy = 0.0;
   };
+  void build(const DummySections& sections);
+  DomeCap dome_cap(int k) const;
   HeightPoint locate(double y) const;
   /// The natural spline through column `col` of `values` at height point hp: derivatives in y.
   detail::SplinePoint along_height(const HeightPoint& hp, const Eigen::MatrixXd& values,
@@ -67,6 +80,7 @@ class SmoothSurface {
   double m_h_theta = 0.0;
   double m_width = 0.0;
   double m_axis_radius = 0.0;
+  DomeCap m_caps[2];  // top, bottom
 };
 
 }  // namespace drape

@@ -19,7 +19,8 @@ TEST(SmoothContact, PotentialIsC2AtTheThresholdAndMatchesTheParticleForceAtConta
   EXPECT_NEAR(smooth_contact_curvature(delta - 1e-9, k, delta), 0.0, 1e-3);
   EXPECT_DOUBLE_EQ(-smooth_contact_slope(0.0, k, delta), k * delta);  // section 4.5 at d = 0
   EXPECT_DOUBLE_EQ(smooth_contact_curvature(0.0, k, delta), 2.0 * k);
-  for (const double g : {-0.02, -0.001, 0.0, 0.004, 0.0099}) {
+  // Off G = 0, where the third derivative jumps (the continuation's join, tested below).
+  for (const double g : {-0.02, -0.001, -1e-6, 1e-6, 0.004, 0.0099}) {
     const double h = 1e-7;
     EXPECT_NEAR(smooth_contact_slope(g, k, delta),
                 (smooth_contact_energy(g + h, k, delta) - smooth_contact_energy(g - h, k, delta)) / (2 * h),
@@ -27,6 +28,20 @@ TEST(SmoothContact, PotentialIsC2AtTheThresholdAndMatchesTheParticleForceAtConta
     EXPECT_NEAR(smooth_contact_curvature(g, k, delta),
                 (smooth_contact_slope(g + h, k, delta) - smooth_contact_slope(g - h, k, delta)) / (2 * h),
                 1e-5);
+  }
+}
+
+// Inside (G < 0) the potential continues as the cubic's Taylor polynomial at 0: value, slope
+// and curvature meet at G = 0, and the curvature stays 2 k however deep the particle is.
+TEST(SmoothContact, QuadraticContinuationInsideIsC2AtContactWithCurvatureTwoK) {
+  const double k = 200.0, delta = 0.01, eps = 1e-14;
+  EXPECT_NEAR(smooth_contact_energy(-eps, k, delta), k * delta * delta / 3.0, 1e-12);
+  EXPECT_NEAR(smooth_contact_energy(eps, k, delta), k * delta * delta / 3.0, 1e-12);
+  EXPECT_NEAR(smooth_contact_slope(-eps, k, delta), smooth_contact_slope(eps, k, delta), 1e-9);
+  EXPECT_NEAR(smooth_contact_curvature(-eps, k, delta), smooth_contact_curvature(eps, k, delta), 1e-6);
+  for (const double g : {-1e-4, -0.01, -0.1, -1.0}) {
+    EXPECT_EQ(smooth_contact_curvature(g, k, delta), 2.0 * k) << g;
+    EXPECT_DOUBLE_EQ(smooth_contact_slope(g, k, delta), -k * delta + 2.0 * k * g) << g;
   }
 }
 
