@@ -24,8 +24,8 @@ inline const std::shared_ptr<const Dummy>& dress_form() {
 /// the particles at 64 x 64 are within the threshold of an object particle; the others lie
 /// between object particles, which are 3 cm apart round the body). Not a force balance: for
 /// timing force evaluations, and the start of the integrator benchmarks.
-inline std::unique_ptr<ClothSystem> draped_cloth(int n, Eigen::VectorXd& y,
-                                                 bool with_dummy = true) {
+inline std::unique_ptr<ClothSystem> draped_cloth(int n, Eigen::VectorXd& y, bool with_dummy = true,
+                                                 CollisionModel model = CollisionModel::particle) {
   const Dummy& dummy = *dress_form();
   ClothParams p;
   p.rows = p.cols = n;
@@ -37,7 +37,7 @@ inline std::unique_ptr<ClothSystem> draped_cloth(int n, Eigen::VectorXd& y,
   p.damping_air = 0.001;
   p.origin = Vec3(0.0, 1.3, 0.2);
   ForceParams forces;
-  forces.collision = {0.01, 1000.0};
+  forces.collision = {0.01, 1000.0, model};
   auto system = std::make_unique<ClothSystem>(build_cloth(p), with_dummy ? dress_form() : nullptr, forces);
   y = Eigen::VectorXd::Zero(system->size());
   const double y_top = dummy.sections().y.front() - 0.02;

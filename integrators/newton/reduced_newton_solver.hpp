@@ -12,7 +12,7 @@
 // S has the spring graph's 3x3 block sparsity, which never changes: a spring e = (i, j) with
 // Jacobian blocks K_e, D_e couples i and j through -C_e, C_e = gamma D_e + gamma^2 K_e, and adds
 // C_e to both diagonal blocks. CG keeps S by block rows (detail::BlockSparseMatrix) and
-// preconditions with its block diagonal or a multigrid V-cycle on the cloth grid; the
+// preconditions with its block diagonal or a multigrid cycle on the cloth grid; the
 // factorisation fills a compressed matrix whose pattern and symbolic analysis are built once.
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -29,7 +29,7 @@ namespace drape {
 /// How the reduced system S is solved.
 enum class ReducedSolve {
   conjugate_gradients,  ///< `pcg-reduced`: block-Jacobi preconditioned CG on S
-  multigrid_cg,         ///< `pcg-multigrid`: CG on S preconditioned by an aggregation V-cycle
+  multigrid_cg,         ///< `pcg-multigrid`: CG on S preconditioned by a multigrid cycle
   sparse_ldlt,          ///< `sparse-direct`: Eigen's SimplicialLDLT factorisation of S
 };
 

@@ -1,0 +1,113 @@
+// drapelab_bench: the 1/30 s step of issue 13's implicit methods at 32 x 32, 64 x 64 and
+// 128 x 128: implicit-euler (one linearised solve, its default pcg-multigrid) and arkode-dirk
+// with the line-search Newton, SDIRK2 (ARKODE_SDIRK_2_1_2) and a third-order ESDIRK
+// (ARKODE_ESDIRK325L2SA_5_2_3), on a free swinging sheet and on the dress form with the smooth
+// contact model. See docs/performance.md.
+//
+// Each benchmark takes a few steps before timing (the first step holds the one-time setup:
+// patterns, multigrid levels, ARKODE's memory, first touch of the arrays), then times a fixed
+// few, so that a run stays bounded at 128 x 128 and measures a warmed-up solver.
+#include <benchmark/benchmark.h>
+
+#include "experiments/benchmarks/draped_cloth.hpp"
+#include "integrators/interface/registry.hpp"
+
+namespace drape {
+namespace {
+
+constexpr double frame = 1.0 / 30.0;
+
+/// An n x n sheet of 0.5 m side and 0.2 kg (draped_cloth's cloth), horizontal, pinned at the
+/// two corners of its first row, no object: released at rest it falls and swings (the sheet of
+/// docs/integrators.md at the benchmarks' resolutions).
+std::unique_ptr<ClothSystem> swinging_sheet(int n, Eigen::VectorXd& y) {
+  ClothParams p;
+  p.rows = p.cols = n;
+  p.spacing = 0.5 / n;
+  p.particle_mass = 0.2 / (n * n);
+  p.k_structural = p.k_shear = 50.0;
+  p.damping_spring = 0.01;
+  p.damping_air = 1e-4;
+  p.origin = Vec3(-0.25, 1.3, 0.0);
+  p.col_dir = Vec3(1.0, 0.0, 0.0);
+  p.row_dir = Vec3(0.0, 0.0, 1.0);
+  auto system = std::make_unique<ClothSystem>(build_cloth(p), nullptr, ForceParams{});
+  y = system->initial_state(0.0);
+  for (const int corner : {0, n - 1})
+    system->constraints().fix_at(corner, y.segment<3>(3 * corner));
+  return system;
+}
+
+/// draped_cloth with the smooth contact model, top row pinned.
+std::unique_ptr<ClothSystem> smooth_drape(int n, Eigen::VectorXd& y) {
+  auto system = bench::draped_cloth(n, y, true, CollisionModel::smooth);
+  for (int col = 0; col < n; ++col) system->constraints().fix_at(col, y.segment<3>(3 * col));
+  return system;
+}
+
+struct StepCase {
+  const char* label;
+  const char* integrator;
+  const char* table;  // "" for none
+  const char* linear_solver;
+  int warm_up, timed;  // steps before timing, timed steps
+};
+
+const StepCase cases[] = {
+    {"implicit-euler", "implicit-euler", "", "", 3, 10},
+    {"sdirk2", "arkode-dirk", "ARKODE_SDIRK_2_1_2", "", 1, 3},
+    {"sdirk2/pcg-multigrid", "arkode-dirk", "ARKODE_SDIRK_2_1_2", "pcg-multigrid", 1, 3},
+    {"esdirk3", "arkode-dirk", "ARKODE_ESDIRK325L2SA_5_2_3", "", 1, 3},
+};
+
+using Scene = std::unique_ptr<ClothSystem> (*)(int, Eigen::VectorXd&);
+
+void run_implicit_steps(benchmark::State& state, Scene scene, const StepCase& c) {
+  Eigen::VectorXd y;
+  auto system = scene(static_cast<int>(state.range(0)), y);
+  IntegratorOptions options;
+  options.name = c.integrator;
+  options.dt = frame;
+  options.table = c.table;
+  options.linear_solver = c.linear_solver;
+  options.nonlinear_solver = options.name == "arkode-dirk" ? "line-search" : "";
+  auto method = make_integrator(options, *system);
+  method->reset(0.0, y);
+  IntegratorCounters before;
+  try {
+    for (int k = 0; k < c.warm_up; ++k) method->step(1e9);
+    before = method->counters();
+    for (auto _ : state) method->step(1e9);
+  } catch (const IntegratorFailure& failure) {
+    state.SkipWithError(failure.what());
+    return;
+  }
+  const IntegratorCounters& after = method->counters();
+  const auto per_step = [&](long IntegratorCounters::*counter) {
+    return benchmark::Counter(static_cast<double>(after.*counter - before.*counter),
+                              benchmark::Counter::kAvgIterations);
+  };
+  state.counters["newton_per_step"] = per_step(&IntegratorCounters::newton_iters);
+  state.counters["linear_per_step"] = per_step(&IntegratorCounters::linear_iters);
+  state.counters["backtracks_per_step"] = per_step(&IntegratorCounters::line_search_backtracks);
+  state.counters["halvings_per_step"] = per_step(&IntegratorCounters::step_halvings);
+}
+
+const bool registered = [] {
+  const std::pair<const char*, Scene> scenes[] = {{"sheet", swinging_sheet},
+                                                  {"dress-form-smooth", smooth_drape}};
+  for (const auto& [scene_label, scene] : scenes)
+    for (const StepCase& c : cases)
+      benchmark::RegisterBenchmark(
+          (std::string("BM_ImplicitStep/") + scene_label + "/" + c.label).c_str(),
+          [scene = scene, c](benchmark::State& state) { run_implicit_steps(state, scene, c); })
+          ->Arg(32)
+          ->Arg(64)
+          ->Arg(128)
+          ->Iterations(c.timed)
+          ->Unit(benchmark::kMillisecond);
+  return true;
+}();
+
+}  // namespace
+}  // namespace drape

@@ -1,0 +1,46 @@
+#pragma once
+// A random matrix with the shape of the reduced system S of a spring grid
+// (reduced_newton_solver.hpp), shared by the multigrid tests and the linear-solver benchmarks;
+// no test framework needed.
+#include <random>
+#include <vector>
+
+#include "integrators/newton/block_sparse_matrix.hpp"
+
+namespace drape::testing {
+
+/// 0.01 I + sum over the rows x cols grid's 8-neighbour pairs of a random SPD coupling
+/// C = R R' (R's entries uniform in [-1, 1], drawn in pair order from `seed`): C on both
+/// diagonal blocks and -C off them. Its diagonal is inverted.
+inline detail::BlockSparseMatrix grid_matrix(int rows, int cols, unsigned seed) {
+  const int n = rows * cols;
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+    for (int dr = -1; dr <= 1; ++dr)
+      for (int dc = -1; dc <= 1; ++dc) {
+        const int r = i / cols + dr, c = i % cols + dc;
+        if ((dr != 0 || dc != 0) && r >= 0 && r < rows && c >= 0 && c < cols)
+          neighbours[static_cast<std::size_t>(i)].push_back(r * cols + c);
+      }
+  detail::BlockSparseMatrix a;
+  a.set_pattern(neighbours);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < n; ++i)
+    for (const int j : neighbours[static_cast<std::size_t>(i)]) {
+      if (j < i) continue;
+      Mat3 r;
+      for (int k = 0; k < 9; ++k) r.data()[k] = u(rng);  // column-major, as the tests drew it
+      const Mat3 c = r * r.transpose();
+      a.blocks()[static_cast<std::size_t>(a.find(i, j))] -= c;
+      a.blocks()[static_cast<std::size_t>(a.find(j, i))] -= c;
+      a.blocks()[static_cast<std::size_t>(a.row_start(i))] += c;
+      a.blocks()[static_cast<std::size_t>(a.row_start(j))] += c;
+    }
+  for (int i = 0; i < n; ++i)
+    a.blocks()[static_cast<std::size_t>(a.row_start(i))] += 0.01 * Mat3::Identity();
+  a.invert_diagonal();
+  return a;
+}
+
+}  // namespace drape::testing
