@@ -45,14 +45,20 @@ double LiveHands::hand_limit(Hand hand, double next_sample) const {
 
 void LiveHands::sample(double now, HandTrack& track) {
   HandFrame frame;
-  frame.t = now + lead;
+  // A run that cannot keep up sits at limit() = (the sample before the last) - margin; if it
+  // did not move since the last sample, now + lead is that sample's time again, and without a
+  // later sample the limit would never move: the run would stop for good. A sample a margin
+  // after the last one moves the limit past `now` (it changes the track only after the old last
+  // sample, which is ahead of the simulation).
+  frame.t = m_frames.empty() ? now + lead
+                             : std::max(now + lead, m_frames.back().t + std::max(m_margin, lead / 100));
   {
     std::lock_guard<std::mutex> lock(m_mutex);
     frame.left = m_latest[0];
     frame.right = m_latest[1];
   }
-  // Only later times (the track needs distinct knots) and only frames that say something.
-  if ((frame.left || frame.right) && (m_frames.empty() || frame.t > m_frames.back().t))
+  // Only frames that say something (their times increase: the track needs distinct knots).
+  if (frame.left || frame.right)
     m_frames.push_back(std::move(frame));
   track = HandTrack(m_frames, SensorTransform{}, TimeMap{}, m_policy);
   track.add_keys(m_keys, TimeMap{});

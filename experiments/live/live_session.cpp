@@ -208,7 +208,10 @@ std::string LiveSession::run() {
   while (running && !m_stop) {
     apply_keys();
     const double wall = std::chrono::duration<double>(clock::now() - start).count();
-    double target = wall;
+    // At most one frame interval of simulated time a turn: a run that cannot keep up still
+    // publishes frames, takes keys and stops on SIGINT every turn instead of chasing the wall
+    // clock in one long advance.
+    double target = std::min(wall, simulation.time() + frame_interval);
     if (m_live_hands) {
       m_live_hands->sample(simulation.time(), m_run->input()->track);
       target = std::min(wall, m_live_hands->limit());

@@ -1,5 +1,6 @@
 // LiveHands (experiments/live/live_hands.hpp): the live track never changes where the simulation
 // may already be, so that a replay of the recorded frames is the same run (docs/live.md).
+#include <algorithm>
 #include "experiments/live/live_hands.hpp"
 
 #include <cmath>
@@ -29,16 +30,37 @@ TEST(LiveHands, SamplesLeadTheSimulationAndLimitIsTheSampleBeforeTheLast) {
   EXPECT_DOUBLE_EQ(hands.limit(), LiveHands::lead - margin);  // one sample: its own time
   hands.sample(0.03, track);
   EXPECT_DOUBLE_EQ(hands.limit(), LiveHands::lead - margin);  // the sample before the last
-  hands.sample(0.03, track);  // no time passed: no new knot
-  hands.sample(0.06, track);
+  // No time passed (a run that cannot keep up, sitting at the limit): a knot one spacing (the
+  // larger of the margin and lead / 100) after the last, so that the limit moves on.
+  hands.sample(0.03, track);
+  const double spacing = std::max(margin, LiveHands::lead / 100);
   EXPECT_DOUBLE_EQ(hands.limit(), 0.03 + LiveHands::lead - margin);
+  hands.sample(0.06, track);
+  EXPECT_DOUBLE_EQ(hands.limit(), 0.03 + LiveHands::lead + spacing - margin);
   const auto frames = hands.recording();
-  ASSERT_EQ(frames.size(), 3u);
-  EXPECT_DOUBLE_EQ(frames[2].t, 0.06 + LiveHands::lead);
+  ASSERT_EQ(frames.size(), 4u);
+  EXPECT_DOUBLE_EQ(frames[2].t, 0.03 + LiveHands::lead + spacing);
+  EXPECT_DOUBLE_EQ(frames[3].t, 0.06 + LiveHands::lead);
   const auto m = track.motion(Hand::Right, 0.12);
   ASSERT_TRUE(m);
   EXPECT_TRUE(m->available);
   EXPECT_EQ(m->position, Vec3(0.1, 1.0, 0.3));
+}
+
+// A run slower than the wall clock advances to limit() every turn and then samples again at
+// the same time: it must keep moving (it used to stop for good at the second sample's limit).
+TEST(LiveHands, ARunAtTheLimitKeepsMoving) {
+  LiveHands hands(TrackPolicy{}, {}, margin);
+  HandTrack track;
+  hands.set(Hand::Right, at(0.1, 1.0, 0.3));
+  double now = 0.0;
+  for (int turn = 0; turn < 40; ++turn) {
+    hands.sample(now, track);
+    ASSERT_GE(hands.limit(), now) << "turn " << turn;
+    now = hands.limit();  // as far as the hands allow, no overshoot
+  }
+  // About lead - margin every two turns.
+  EXPECT_GT(now, 20 * (LiveHands::lead - 2 * margin) - LiveHands::lead);
 }
 
 // The invariant the live loop relies on: after each new sample the track is bit-identical to
