@@ -84,14 +84,7 @@ Recording read_drapelab_recording(const std::string& file) {
   while (lines.next(line)) {
     if (detail::split_fields(line, ' ').empty()) continue;
     if (!header) {
-      // Syntax, numbers out of range and nesting beyond max_json_depth, naming the line.
-      const nlohmann::json object = parse_json_text(line, file, lines.where());
-      JsonReader reader(object, file, lines.where() + " (header)");
-      if (reader.string("format") != native_format)
-        throw reader.error("format", std::string("expected \"") + native_format + "\"");
-      if (reader.integer("version") != native_version)
-        throw reader.error("version", "only version 1 is supported");
-      reader.finish();
+      read_drapelab_header_line(line, file, lines.where());
       header = true;
       continue;
     }
@@ -102,6 +95,18 @@ Recording read_drapelab_recording(const std::string& file) {
   }
   if (!header) throw InputError(file, "", "empty file: expected the drapelab-recording header");
   return recording;
+}
+
+void read_drapelab_header_line(const std::string& line, const std::string& file,
+                               const std::string& where) {
+  // Syntax, numbers out of range and nesting beyond max_json_depth, naming the line.
+  const nlohmann::json object = parse_json_text(line, file, where);
+  JsonReader reader(object, file, where + " (header)");
+  if (reader.string("format") != native_format)
+    throw reader.error("format", std::string("expected \"") + native_format + "\"");
+  if (reader.integer("version") != native_version)
+    throw reader.error("version", "only version 1 is supported");
+  reader.finish();
 }
 
 HandFrame read_drapelab_frame_line(const std::string& line, const std::string& file,

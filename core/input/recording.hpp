@@ -53,6 +53,11 @@ RecordingFormat detect_recording_format(const std::string& file);
 
 /// Reads a native drapelab JSON Lines recording.
 Recording read_drapelab_recording(const std::string& file);
+/// Checks the header line of the native JSON Lines format ({"format": "drapelab-recording",
+/// "version": 1}); errors name `file` and `where`. The sensor bridge checks a header that opens
+/// its stream with it.
+void read_drapelab_header_line(const std::string& line, const std::string& file,
+                               const std::string& where);
 /// One frame line of the native JSON Lines format (after the header), as read_drapelab_recording
 /// reads it; errors name `file` and `where` (e.g. "line 3"). The live mode's sensor bridge reads
 /// its stream with it (docs/live.md).

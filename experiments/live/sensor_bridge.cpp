@@ -9,8 +9,6 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include "core/scene/json_text.hpp"
-
 namespace drape {
 
 namespace {
@@ -97,10 +95,8 @@ void SensorBridge::line(const std::string& text, const std::string& name, int nu
   try {
     // A recording's header may open the stream (a file piped in as it is); it carries no frame.
     if (number == 1 && text.find("\"format\"") != std::string::npos) {
-      const nlohmann::json header = parse_json_text(text, name, where);
-      if (header.is_object() && header.contains("format") &&
-          header["format"] == "drapelab-recording")
-        return;
+      read_drapelab_header_line(text, name, where);
+      return;
     }
     const HandFrame frame = read_drapelab_frame_line(text, name, where);
     detail::check_time_order(previous_t, frame.t, name, where + ".t");
