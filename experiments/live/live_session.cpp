@@ -47,18 +47,15 @@ bool has_hand_samples(const HandTrack& track) {
 std::string page_scene_json(const ClothSystem& system, const Scene& scene, bool live_hands) {
   nlohmann::json pins = nlohmann::json::array();
   for (const GridPoint& p : scene.pins) pins.push_back({p.row, p.col});
-  nlohmann::json dummy = {{"sections", 0}, {"points", 0}, {"positions", nlohmann::json::array()}};
-  if (const Dummy* d = system.dummy()) {
-    dummy["sections"] = d->num_sections();
-    dummy["points"] = d->points();
-    for (int o = 0; o < d->size(); ++o)
-      for (int k = 0; k < 3; ++k)  // 0.1 mm, as the viewer's page_data
-        dummy["positions"].push_back(std::round(d->position(o)[k] * 1e4) / 1e4);
-  }
+  const Dummy* d = system.dummy();
+  std::vector<double> positions;
+  for (int o = 0; d && o < d->size(); ++o)
+    for (int k = 0; k < 3; ++k) positions.push_back(d->position(o)[k]);
   return nlohmann::json({{"rows", system.cloth().params.rows},
                          {"cols", system.cloth().params.cols},
                          {"pins", pins},
-                         {"dummy", dummy},
+                         {"dummy", dummy_page_json(d ? d->num_sections() : 0, d ? d->points() : 0,
+                                                   positions)},
                          {"live_hands", live_hands},
                          {"duration", scene.duration}})
       .dump();

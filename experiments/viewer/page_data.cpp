@@ -27,9 +27,10 @@ nlohmann::json rounded(const std::vector<double>& values, const std::vector<size
 }
 
 // Object particle and hand coordinates to 0.1 mm, enough for a picture, a third of the text.
-nlohmann::json millimetric(const std::vector<float>& values) {
+template <class Real>
+nlohmann::json millimetric(const std::vector<Real>& values) {
   nlohmann::json out = nlohmann::json::array();
-  for (const float v : values) out.push_back(std::round(static_cast<double>(v) * 1e4) / 1e4);
+  for (const Real v : values) out.push_back(std::round(static_cast<double>(v) * 1e4) / 1e4);
   return out;
 }
 
@@ -131,6 +132,10 @@ std::vector<size_t> decimate_min_max(const std::vector<double>& values, size_t m
   return keep;
 }
 
+nlohmann::json dummy_page_json(int sections, int points, const std::vector<double>& positions) {
+  return {{"sections", sections}, {"points", points}, {"positions", millimetric(positions)}};
+}
+
 nlohmann::json page_data(const ViewerRun& run) {
   const QuantisedPositions q = quantise_frames(run.frames);
   nlohmann::json times = nlohmann::json::array(), events = nlohmann::json::array();
@@ -170,10 +175,8 @@ nlohmann::json page_data(const ViewerRun& run) {
         {"step", q.step},
         {"positions", base64_of_int16(q.values)},
         {"fixed", fixed}}},
-      {"dummy",
-       {{"sections", run.dummy_sections},
-        {"points", run.dummy_points},
-        {"positions", millimetric(run.dummy_positions)}}},
+      {"dummy", dummy_page_json(run.dummy_sections, run.dummy_points,
+                                {run.dummy_positions.begin(), run.dummy_positions.end()})},
       {"hands", hands_json(run.hands)},
       {"energy",
        {{"t", rounded(run.energy_t, keep, 9)},

@@ -26,6 +26,10 @@ QuantisedPositions quantise_frames(const std::vector<ViewerFrame>& frames);
 /// the last, and each bucket's minimum and maximum, so an oscillation keeps its envelope.
 std::vector<size_t> decimate_min_max(const std::vector<double>& values, size_t max_points);
 
+/// The dress form as the pages draw it (viewer_scene.js): sections, points a section and xyz per
+/// object particle (to 0.1 mm); shared by `drapelab view` and `drapelab live`.
+nlohmann::json dummy_page_json(int sections, int points, const std::vector<double>& positions);
+
 /// The JSON the page reads for one run (the keys are listed in docs/viewer.md).
 nlohmann::json page_data(const ViewerRun& run);
 
