@@ -211,7 +211,7 @@ std::string LiveSession::run() {
     double target = std::min(wall, simulation.time() + frame_interval);
     if (m_live_hands) {
       m_live_hands->sample(simulation.time(), m_run->input()->track);
-      target = std::min(wall, m_live_hands->limit());
+      target = std::min(target, m_live_hands->limit());
     }
     running = simulation.advance(target);
     const double sim_time = simulation.time();
