@@ -135,6 +135,15 @@ TEST(SceneLimits, OutputIntervalsMustAdvanceTimeAndBoundTheFiles) {
             "scene.json: output.trace_interval: would write 1000000020.0 rows (particles x "
             "frames), more than 1000000000.0");
   EXPECT_EQ(error_for(with("output.vtk_interval=0")), "no error");
+  EXPECT_EQ(error_for(with("output.event_trace_interval=1e-8")),
+            "scene.json: output.event_trace_interval: would write 1000000020.0 rows (particles x "
+            "frames), more than 1000000000.0");
+  EXPECT_EQ(error_for(with("output.event_trace_window=-1")),
+            "scene.json: output.event_trace_window: must be positive, got -1.0");
+  EXPECT_EQ(error_for(with("output.event_trace_window=1e300")),
+            "scene.json: output.event_trace_window: must be at most 1000000.0, got 1e+300");
+  EXPECT_EQ(error_for(with("output.event_trace_windw=0.1")),
+            "scene.json: output.event_trace_windw: unknown key");
 }
 
 TEST(SceneLimits, HugeOverrideValuesAreShortenedInTheMessage) {
