@@ -30,7 +30,8 @@ TABLE_COLUMNS = (
     "energy_drift_final_rel", "energy_drift_exponent", "attach_error_mean", "vibration_rms_final",
     "vibration_rms_events", "vibration_rms_holding", "hand_jitter_rms_holding", "settle_time", "contact_switch_rate_final", "hand_jitter_rms_final",
     "mapping_gap_mean_mapped", "mapping_gap_mean_final", "mapping_gap_max_final",
-    "spring_strain_rms_mapped", "spring_strain_rms_final", "spring_strain_max_final", "error_rms",
+    "spring_strain_rms_mapped", "spring_strain_rms_final", "spring_strain_max_final",
+    "short_error_start", "short_error_events", "error_rms",
     "error_max", "stable_value", "slow_motion_rms_final", "vibration_cutoff_hz",
 )
 
@@ -44,6 +45,9 @@ SUMMARY_METRICS = (
     ("vibration_rms_after_map", "Vibration after a map", "mm", 1e3),
     ("vibration_rms_final", "Vibration over the last 0.5 s", "mm", 1e3),
     ("slow_motion_rms_final", "Slow motion over the last 0.5 s", "mm", 1e3),
+    ("short_error_start", "RMS error against the reference 1/30 s after the start", "mm", 1e3),
+    ("short_error_events_inherited", "RMS error against the reference at the events", "mm", 1e3),
+    ("short_error_events", "RMS error against the reference 1/30 s after the events", "mm", 1e3),
     ("error_rms", "RMS error of the final positions against the reference", "mm", 1e3),
     ("energy_drift_max_rel", "Largest relative energy error", "1", 1.0),
     ("wall_seconds", "Wall time", "s", 1.0),

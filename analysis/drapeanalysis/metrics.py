@@ -12,6 +12,12 @@ VIBRATION_WINDOW = 0.5
 # The events whose windows get a vibration column each (vibration_rms_after_<kind>).
 EVENT_KINDS = ("hold", "release", "attach", "attach_fixed", "map")
 SETTLE_SPEED = 0.01
+# Horizon of the short-horizon error against the reference: one Kinect frame, what the user sees
+# next (docs/analysis.md, "Error against the reference").
+SHORT_HORIZON = 1.0 / 30.0
+# Frames of a run and of its reference are the same instant when their times agree this well
+# (both are t_e + k dt_trace computed the same way).
+SAME_INSTANT = 1e-9
 
 
 def energy_drift(energy):
@@ -217,6 +223,55 @@ def reference_error(run, reference_run):
     return {"error_rms": float(np.sqrt(np.mean(d**2))), "error_max": float(d.max())}
 
 
+def _event_times(summary):
+    return sorted({float(e["t"]) for e in summary.get("events", []) if e.get("type") != "ignored"})
+
+
+def _distance_rms(run_trace, reference_trace, t):
+    """RMS over particles of the distance between a run and its reference at the run's frame
+    nearest to t (within half a frame interval), or None when the run has no frame there or the
+    reference none at the same instant."""
+    times = run_trace["t"]
+    i = int(np.argmin(np.abs(times - t)))
+    spacing = float(np.median(np.diff(times))) if len(times) > 1 else 0.0
+    if abs(times[i] - t) > 0.5 * spacing + SAME_INSTANT:
+        return None
+    j = int(np.argmin(np.abs(reference_trace["t"] - times[i])))
+    if abs(reference_trace["t"][j] - times[i]) > SAME_INSTANT:
+        return None
+    d = np.linalg.norm(run_trace["x"][i] - reference_trace["x"][j], axis=1)
+    return float(np.sqrt(np.mean(d**2)))
+
+
+def short_horizon_error(run, reference_run, horizon=SHORT_HORIZON):
+    """Error against the reference over a short horizon, from both runs' event traces (the same
+    seeded initial state, frames at the same instants): `horizon` after the start
+    (`short_error_start`), and averaged over the events at the same time in both runs: at the
+    event (`short_error_events_inherited`, what the run brings into it) and `horizon` after it
+    (`short_error_events`). Empty without both event traces (docs/analysis.md)."""
+    mine, theirs = runfiles.read_event_trace(run), runfiles.read_event_trace(reference_run)
+    if mine is None or theirs is None:
+        return {}
+    if mine["x"].shape[1:] != theirs["x"].shape[1:]:
+        raise ValueError(f"{run / 'event_trace'}: {mine['x'].shape[1]} particles, the reference "
+                         f"{reference_run / 'event_trace'} has {theirs['x'].shape[1]}")
+    # The first window starts at the run's start (docs/outputs.md, event_trace/).
+    start = _distance_rms(mine, theirs, float(mine["t"][0]) + horizon)
+    shared = set(_event_times(runfiles.read_summary(reference_run)))
+    at, after = [], []
+    for t in _event_times(runfiles.read_summary(run)):
+        if t not in shared:
+            continue
+        before, later = _distance_rms(mine, theirs, t), _distance_rms(mine, theirs, t + horizon)
+        if before is not None and later is not None:
+            at.append(before)
+            after.append(later)
+    return {"short_error_start": math.nan if start is None else start,
+            "short_error_events_inherited": float(np.mean(at)) if at else math.nan,
+            "short_error_events": float(np.mean(after)) if after else math.nan,
+            "short_error_events_n": len(after)}
+
+
 def run_metrics(directory, row, rows_by_id):
     """Every metric the files of one run support, and the per-event vibration windows."""
     run = runfiles.run_dir(directory, row)
@@ -232,4 +287,5 @@ def run_metrics(directory, row, rows_by_id):
     reference = rows_by_id.get(row.get("reference") or "")
     if reference is not None:
         out.update(reference_error(run, runfiles.run_dir(directory, reference)))
+        out.update(short_horizon_error(run, runfiles.run_dir(directory, reference)))
     return out, windows

@@ -84,6 +84,19 @@ def write_trace(run, t, x, v=None, fixed=None, contact=None, event=None):
     (run / "trace.csv").write_text("\n".join(lines) + "\n")
 
 
+def write_event_trace(run, t, x):
+    """event_trace/ (docs/outputs.md) with frames at times t of positions x (K, N, 3), at rest,
+    free and out of contact."""
+    folder = run / "event_trace"
+    folder.mkdir()
+    frames, particles = x.shape[0], x.shape[1]
+    np.save(folder / "t.npy", np.asarray(t, np.float64))
+    np.save(folder / "x.npy", x.astype(np.float32))
+    np.save(folder / "v.npy", np.zeros((frames, particles, 3), np.float32))
+    np.save(folder / "fixed.npy", np.zeros((frames, particles), np.uint8))
+    np.save(folder / "contact.npy", -np.ones((frames, particles), np.int32))
+
+
 def write_hands(run, rows):
     """hands.csv from (t, hand, available, x, y, z) rows; candidate, distance, held filled in."""
     write_csv(run / "hands.csv", "t,hand,available,x,y,z,candidate,distance,held",

@@ -25,13 +25,7 @@ class EventTraceVibrationTest(RunFolderTest):
         coarse = np.arange(101) / 100.0
         runfolder.write_trace(run, coarse, motion(coarse))
         fine = 0.2 + np.arange(501) / 1000.0
-        folder = run / "event_trace"
-        folder.mkdir()
-        np.save(folder / "t.npy", fine)
-        np.save(folder / "x.npy", motion(fine).astype(np.float32))
-        np.save(folder / "v.npy", np.zeros((len(fine), 1, 3), np.float32))
-        np.save(folder / "fixed.npy", np.zeros((len(fine), 1), np.uint8))
-        np.save(folder / "contact.npy", -np.ones((len(fine), 1), np.int32))
+        runfolder.write_event_trace(run, fine, motion(fine))
         out, windows = metrics.vibration(run, runfiles.read_json(run / "summary.json"))
         self.assertClose(windows[0]["vibration_rms"], amplitude / math.sqrt(2), rel=0.01)
         self.assertClose(out["vibration_sample_hz_events"], 1000.0, rel=1e-12)
