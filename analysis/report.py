@@ -35,6 +35,9 @@ TABLE_COLUMNS = (
     "error_max", "stable_value", "slow_motion_rms_final", "vibration_cutoff_hz",
 )
 
+# The parameter that numbers the repeats of an ensemble (experiments/sweep/experiment.cpp).
+REPEAT_PARAMETER = "perturbation.seed"
+
 # The summary's method x scene tables: column, title, unit, scale to that unit.
 SUMMARY_METRICS = (
     ("vibration_rms_events", "Vibration after the manipulations (largest event window)", "mm", 1e3),
@@ -49,6 +52,7 @@ SUMMARY_METRICS = (
     ("short_error_events_inherited", "RMS error against the reference at the events", "mm", 1e3),
     ("short_error_events", "RMS error against the reference 1/30 s after the events", "mm", 1e3),
     ("error_rms", "RMS error of the final positions against the reference", "mm", 1e3),
+    ("attach_error_mean", "Attach error (distance from p_o + delta n_o)", "cm", 1e2),
     ("energy_drift_max_rel", "Largest relative energy error", "1", 1.0),
     ("wall_seconds", "Wall time", "s", 1.0),
 )
@@ -124,6 +128,9 @@ def summary_cell(r, metric, scale):
 def summary_tables(rows, parameters):
     """Method x scene tables of the main metrics (mean over repeats, +- the 95 % half-width when
     a method was run more than once), in their units; empty metrics left out."""
+    # The repeats of an ensemble differ only in their seed (docs/experiments.md, "Ensembles"):
+    # one method, one row.
+    parameters = [p for p in parameters if p != REPEAT_PARAMETER]
     frame = pd.DataFrame([{"method": method_name(r, parameters), "scene": plots.scene_name(r),
                            **{m: plots.number(r.get(m)) for m, *_ in SUMMARY_METRICS}} for r in rows])
     if frame.empty:

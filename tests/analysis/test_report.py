@@ -156,6 +156,14 @@ class ReportProvenanceAndViewerTest(unittest.TestCase):
             self.assertIn(text, page)
         self.assertIn("<th>CPU</th><td>not recorded</td>", report.provenance_html([{"id": "x"}]))
 
+    def test_summary_tables_group_the_repeats_of_an_ensemble(self):
+        # Three repeats (seeds 1-3) of one method: one row, mean 2 cm +- t(0.975, 2) 1 / sqrt 3.
+        rows = [{"id": f"r{k}", "scene": "scenes/s.json", "integrator": "leapfrog", "integrator.dt": 0.001,
+                 "perturbation.seed": k, "attach_error_mean": 0.01 * k} for k in (1, 2, 3)]
+        page = report.summary_tables(rows, ["integrator.dt", "perturbation.seed"])
+        self.assertIn("2 &plusmn; 2.5 (n=3)", page)
+        self.assertNotIn("seed=", page)
+
     def test_side_by_side_pairs_leapfrog_with_an_implicit_method_at_their_smallest_steps(self):
         from drapeanalysis import viewer_pages
         rows = [{"id": "ref", "integrator": "leapfrog", "integrator.dt": 1e-5, "is_reference": True},
