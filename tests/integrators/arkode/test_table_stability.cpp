@@ -74,7 +74,7 @@ TEST(TableStability, ArkodeSdirk2IsAlgebraicallyStableButNotLStable) {
   EXPECT_DOUBLE_EQ(s.min_weight, 0.5);
   EXPECT_NEAR(s.stiff_limit, 0.5, 1e-11);
   EXPECT_NEAR(s.max_imaginary_axis, 1.0, 1e-12);
-  EXPECT_NEAR(s.stage_max_imaginary_axis[1], 2.0 / std::sqrt(3.0), 1e-5);  // sampled maximum
+  EXPECT_NEAR(s.stage_max_imaginary_axis[1], 2.0 / std::sqrt(3.0), 1e-4);  // sampled maximum
   EXPECT_NEAR(s.stage_stiff_limit[1], 0.0, 1e-11);
   EXPECT_DOUBLE_EQ(s.implicit_inverse_norm, 2.0);  // A^-1 = [1 0; 1 1]
 }
