@@ -127,6 +127,18 @@ ButcherTableHandle create_butcher_table(const ButcherTableau& t) {
       "ARKodeButcherTable_Create"));
 }
 
+ButcherTableau to_butcher_tableau(const ARKodeButcherTable table) {
+  const std::size_t s = static_cast<std::size_t>(table->stages);
+  ButcherTableau t;
+  t.c.assign(table->c, table->c + s);
+  t.b.assign(table->b, table->b + s);
+  if (table->d) t.d.assign(table->d, table->d + s);
+  for (std::size_t i = 0; i < s; ++i) t.A.emplace_back(table->A[i], table->A[i] + s);
+  t.q = table->q;
+  t.p = table->p;
+  return t;
+}
+
 }  // namespace detail
 
 }  // namespace drape

@@ -34,6 +34,8 @@ int tableau_order(const ButcherTableau& tableau, const std::vector<double>& w);
 namespace detail {
 /// The tableau as an ARKODE table.
 ButcherTableHandle create_butcher_table(const ButcherTableau& tableau);
+/// An ARKODE table as a tableau (c, A, b, d, q, p copied).
+ButcherTableau to_butcher_tableau(const ARKodeButcherTable table);
 }  // namespace detail
 
 }  // namespace drape
