@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "integrators/arkode/arkode_tables.hpp"
@@ -152,6 +153,30 @@ TEST(TableStability, LinearAndAlgebraicMeasuresDoNotSeparateThem) {
   EXPECT_EQ(algebraically_stable, 1);
   EXPECT_LT(table_stability(arkode_dirk("KVAERNO_4_2_3")).algebraic_stability,
             table_stability(arkode_dirk("ARK437L2SA_DIRK_7_3_4")).algebraic_stability);
+}
+
+// Not a test: prints the measures behind docs/integrators.md's table ("Which tables gain energy
+// at large steps"), one markdown row a table (verdict column added by hand). Run it with
+// --gtest_also_run_disabled_tests --gtest_filter='*DISABLED_PrintEveryTable'.
+TEST(TableStability, DISABLED_PrintEveryTable) {
+  // The stiffest spring's h omega at 1/30 s: about 25 at the shipped stiffness, 250 at 100x.
+  const auto largest_stage = [](const ButcherTableau& t, double y) {
+    double largest = 0.0;
+    for (const auto& r : stage_stability_functions(t, {0.0, y})) largest = std::max(largest, std::abs(r));
+    return largest;
+  };
+  for (const auto& [name, s] : every_arkode_dirk()) {
+    const auto worst = std::max_element(s.stage_max_imaginary_axis.begin(),
+                                        s.stage_max_imaginary_axis.end());
+    const ButcherTableau tableau = arkode_dirk(name);
+    std::printf(
+        "| %s | %zu | %.3g | %.3g | %.2g | %.3g (stage %td) | %.3g | %.2f / %.2f | %.3g | %s | %.3g |\n",
+        name.c_str(), s.stage_stiff_limit.size(), s.min_weight, s.algebraic_stability, s.stiff_limit,
+        *worst, worst - s.stage_max_imaginary_axis.begin() + 1,
+        *std::max_element(s.stage_stiff_limit.begin(), s.stage_stiff_limit.end()),
+        largest_stage(tableau, 25.0), largest_stage(tableau, 250.0), s.max_coefficient,
+        s.nodes_in_unit_interval ? "yes" : "no", s.implicit_inverse_norm);
+  }
 }
 
 }  // namespace
