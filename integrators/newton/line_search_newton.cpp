@@ -15,6 +15,26 @@ constexpr int max_halvings = 30;
 // E_k is a sum of terms each rounded to about machine epsilon: a change below 1e3 epsilon of
 // their magnitude is noise (the sheet's E_k sums 144 particles' and 506 springs' terms).
 constexpr double round_off = 1e3 * std::numeric_limits<double>::epsilon();
+// Eisenstat and Walker 1996 (SIAM J. Sci. Comput. 17(1), choice 2): the first iteration's and
+// the largest relative residual of the Hessian solve.
+constexpr double max_forcing = 1e-2;
+
+// The forcing term of an inexact Newton iteration (Eisenstat and Walker 1996, choice 2 with its
+// safeguard): CG solves S d = -g only to |g + S d| <= eta |g|, with eta = 0.9 (|g_k| /
+// |g_k-1|)^2. Far from the root, where the line search cuts the step anyway, a few CG
+// iterations give a direction as good as an exact solve; as |g| falls quadratically eta falls
+// with it, which keeps the exact Newton's convergence. `floor` is the solver's own tolerance.
+double forcing_term(double gradient_norm, double previous_norm, double previous_eta,
+                    double floor) {
+  if (previous_norm == 0.0) return std::max(max_forcing, floor);
+  const double ratio = gradient_norm / previous_norm;
+  double eta = 0.9 * ratio * ratio;
+  // Eisenstat and Walker's safeguard: eta may not drop faster than the last one squared unless
+  // that is already small, or one lucky reduction would make every later solve exact.
+  const double safeguard = 0.9 * previous_eta * previous_eta;
+  if (safeguard > 0.1) eta = std::max(eta, safeguard);
+  return std::clamp(eta, floor, max_forcing);
+}
 
 }  // namespace
 
@@ -33,6 +53,7 @@ StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef
   m_step.resize(z.size());
   m_gradient.resize(n3);
   double previous_norm = 0.0, rate = 0.0;
+  double previous_gradient_norm = 0.0, eta = max_forcing;
   bool local = false;  // the last line search took the full step
   while (result.iterations < stop.max_iterations) {
     ++result.iterations;
@@ -44,6 +65,7 @@ StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef
     // descend, the definite S gives a descent direction from any iterate.
     double slope = 0.0;
     bool exact = false;
+    const double gradient_norm = m_gradient.norm();
     if (local) {
       ++result.setups;
       if (m_exact.factorize(z.head(n3), z.tail(n3), gamma)) {
@@ -60,7 +82,8 @@ StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef
       m_solver.update(z.head(n3), z.tail(n3), gamma);
       ++result.setups;
       m_rhs.tail(n3) = -m_gradient / mass;
-      m_solver.solve(m_rhs, m_step);
+      eta = forcing_term(gradient_norm, previous_gradient_norm, eta, m_solver.tolerance());
+      m_solver.solve(m_rhs, m_step, CgStart::zero, eta);
       slope = m_gradient.dot(m_step.tail(n3));
       if (!(slope < 0.0)) {
         // An unconverged CG may return no descent direction: fall back to steepest descent in
@@ -80,6 +103,7 @@ StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef
     // initial rate 1.
     if (result.iterations > 1) rate = std::max(0.3 * rate, update_norm / previous_norm);
     previous_norm = update_norm;
+    previous_gradient_norm = gradient_norm;
     const double error =
         result.iterations == 1 ? update_norm
         : rate < 1.0          ? update_norm * rate / (1.0 - rate)
