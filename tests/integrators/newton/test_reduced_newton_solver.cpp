@@ -125,6 +125,25 @@ TEST(ReducedNewtonSolver, MultigridNeedsFarFewerIterationsThanBlockJacobi) {
   EXPECT_LT(4 * iterations[1], iterations[0]) << iterations[1] << " vs " << iterations[0];
 }
 
+// The line-search Newton's forcing term (line_search_newton.cpp): a solve's own relative
+// residual replaces the constructor's, and 0 keeps the constructor's.
+TEST(ReducedNewtonSolver, SolveTolerancesOverrideTheConstructors) {
+  auto s = testing::pinned_test_cloth(0.05, 0.01);
+  const Eigen::Index n3 = 3 * s->num_particles();
+  const Eigen::VectorXd y = testing::jitter(s->initial_state(0.0), 0.003, 11);
+  const Eigen::VectorXd r = testing::jitter(Eigen::VectorXd::Zero(2 * n3), 1.0, 12);
+  ReducedNewtonSolver solver(*s, ReducedSolve::conjugate_gradients, ForceSplit::all, 1e-13, 500);
+  solver.update(y.head(n3), y.tail(n3), 1.0 / 30.0);
+  Eigen::VectorXd exact(2 * n3), loose(2 * n3);
+  ASSERT_TRUE(solver.solve(r, exact, CgStart::zero, 0.0));
+  const long tight_iterations = solver.iterations();
+  ASSERT_TRUE(solver.solve(r, loose, CgStart::zero, 1e-2));
+  const long loose_iterations = solver.iterations() - tight_iterations;
+  EXPECT_LT(2 * loose_iterations, tight_iterations);
+  EXPECT_GT((loose - exact).norm(), 1e-10 * exact.norm());  // stopped early, not converged
+  EXPECT_LT((loose - exact).norm(), 0.1 * exact.norm());
+}
+
 TEST(ReducedNewtonSolver, LinearSolverNames) {
   EXPECT_EQ(reduced_solve_named("pcg-reduced"), ReducedSolve::conjugate_gradients);
   EXPECT_EQ(reduced_solve_named("pcg-multigrid"), ReducedSolve::multigrid_cg);
