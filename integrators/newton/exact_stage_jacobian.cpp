@@ -1,5 +1,7 @@
 #include "integrators/newton/exact_stage_jacobian.hpp"
 
+#include <algorithm>
+
 namespace drape {
 
 ExactStageJacobian::ExactStageJacobian(const ClothSystem& system, ForceSplit split)
@@ -17,8 +19,22 @@ bool ExactStageJacobian::factorize(ConstVecRef x, ConstVecRef v, double gamma) {
   Eigen::SparseMatrix<double> mass(m_a.rows(), m_a.cols());
   mass.setIdentity();
   m_a += m_system.particle_mass() * mass;
-  m_lu.compute(m_a);
+  // The symbolic analysis (column ordering, elimination tree) depends on the pattern alone,
+  // which changes only with the fixed set or the contacts: redone then, not every iteration.
+  if (!same_pattern()) {
+    m_lu.analyzePattern(m_a);
+    m_outer.assign(m_a.outerIndexPtr(), m_a.outerIndexPtr() + m_a.outerSize() + 1);
+    m_inner.assign(m_a.innerIndexPtr(), m_a.innerIndexPtr() + m_a.nonZeros());
+  }
+  m_lu.factorize(m_a);
   return m_lu.info() == Eigen::Success;
+}
+
+bool ExactStageJacobian::same_pattern() const {
+  return m_a.isCompressed() && m_outer.size() == static_cast<std::size_t>(m_a.outerSize()) + 1 &&
+         std::equal(m_outer.begin(), m_outer.end(), m_a.outerIndexPtr()) &&
+         m_inner.size() == static_cast<std::size_t>(m_a.nonZeros()) &&
+         std::equal(m_inner.begin(), m_inner.end(), m_a.innerIndexPtr());
 }
 
 void ExactStageJacobian::newton_direction(const Eigen::VectorXd& g, Eigen::VectorXd& d) {

@@ -12,6 +12,7 @@
 // made it cycle). A is factorised by sparse LU on the free particles (fixed rows: M I).
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
+#include <vector>
 
 #include "core/model/cloth_system.hpp"
 
@@ -28,10 +29,14 @@ class ExactStageJacobian {
   void newton_direction(const Eigen::VectorXd& g, Eigen::VectorXd& d);
 
  private:
+  /// True when m_a has the pattern of the last symbolic analysis.
+  bool same_pattern() const;
+
   const ClothSystem& m_system;
   ForceSplit m_split;
   Eigen::SparseMatrix<double> m_dfdx, m_dfdv, m_a;
   Eigen::SparseLU<Eigen::SparseMatrix<double>> m_lu;
+  std::vector<int> m_outer, m_inner;  // the analysed pattern of m_a
 };
 
 }  // namespace drape

@@ -3,7 +3,8 @@
 // backtracking line search (docs/integrators.md, "Stages as minimisation"; Gast et al. 2015;
 // Nocedal and Wright 2006, algorithm 3.1; ipc-toolkit and IPC use the same globalisation).
 // Each iteration freezes E_k at the iterate, takes the Newton direction d = -S^-1 g of the
-// definite Hessian S (descent, S positive definite) and halves the step until Armijo's
+// definite Hessian S (descent, S positive definite; CG solves S only to Eisenstat and Walker's
+// forcing term, an inexact Newton, as any CG iterate descends) and halves the step until Armijo's
 // condition E_k(v + alpha d) <= E_k(v) + 1e-4 alpha g.d holds. Once a full step was accepted,
 // the exact stage Jacobian's direction (ExactStageJacobian) replaces d whenever it descends:
 // quadratic convergence near the solution, where S alone converged linearly or, at 100x

@@ -210,7 +210,7 @@ void ReducedNewtonSolver::jacobian_times(ConstVecRef r_x, const Eigen::VectorXd&
   }
 }
 
-bool ReducedNewtonSolver::solve(ConstVecRef r, VecRef z, CgStart start) {
+bool ReducedNewtonSolver::solve(ConstVecRef r, VecRef z, CgStart start, double tolerance) {
   const Eigen::Index n3 = r.size() / 2;
   const auto r_x = r.head(n3), r_v = r.tail(n3);
   const ConstraintSet& constraints = m_system.constraints();
@@ -221,7 +221,8 @@ bool ReducedNewtonSolver::solve(ConstVecRef r, VecRef z, CgStart start) {
   jacobian_times(r_x, m_fixed_r_v, m_product);
   m_b = m_system.particle_mass() * r_v + m_gamma * m_product;
   constraints.zero_fixed(m_b);
-  const bool converged = solve_reduced(m_b, m_z_v, start);
+  const bool converged =
+      solve_reduced(m_b, m_z_v, start, tolerance > 0.0 ? tolerance : m_tolerance);
   z.tail(n3) = m_z_v;
   z.head(n3) = r_x + m_gamma * m_z_v;
   for (const int i : constraints.fixed_particles()) {
@@ -232,7 +233,7 @@ bool ReducedNewtonSolver::solve(ConstVecRef r, VecRef z, CgStart start) {
 }
 
 bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v,
-                                        CgStart start) {
+                                        CgStart start, double tolerance) {
   if (m_method == ReducedSolve::sparse_ldlt) {
     z_v = m_ldlt.solve(b);
     return m_ldlt.info() == Eigen::Success;
@@ -252,7 +253,7 @@ bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorX
     z_v.setZero(b.size());
     m_residual = b;
   }
-  if (m_residual.norm() <= m_tolerance * b_norm) return true;
+  if (m_residual.norm() <= tolerance * b_norm) return true;
   precondition(m_residual, m_preconditioned);
   m_direction = m_preconditioned;
   double rho = m_residual.dot(m_preconditioned);
@@ -262,7 +263,7 @@ bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorX
     z_v += alpha * m_direction;
     m_residual -= alpha * m_product;
     ++m_iterations;
-    if (m_residual.norm() <= m_tolerance * b_norm) return true;
+    if (m_residual.norm() <= tolerance * b_norm) return true;
     precondition(m_residual, m_preconditioned);
     const double rho_next = m_residual.dot(m_preconditioned);
     m_direction = m_preconditioned + (rho_next / rho) * m_direction;

@@ -61,8 +61,11 @@ class ReducedNewtonSolver {
   /// Forgets K and D (the constraints changed): the next setup must call update().
   void invalidate() { m_has_jacobian = false; }
   /// z = (I - gamma J)^-1 r for 6N vectors; false when CG stopped before its tolerance (z is
-  /// then its last iterate).
-  bool solve(ConstVecRef r, VecRef z, CgStart start = CgStart::zero);
+  /// then its last iterate). CG stops at the relative residual `tolerance`, or at the one given
+  /// to the constructor when it is 0 (an inexact Newton's forcing term, line_search_newton.hpp).
+  bool solve(ConstVecRef r, VecRef z, CgStart start = CgStart::zero, double tolerance = 0.0);
+  /// CG's relative residual given to the constructor.
+  double tolerance() const { return m_tolerance; }
   /// CG iterations over all solves so far (0 for the direct solve).
   long iterations() const { return m_iterations; }
 
@@ -80,7 +83,8 @@ class ReducedNewtonSolver {
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out);
   /// out = K r_x + D w with the unclamped columns of fixed particles (rows not zeroed).
   void jacobian_times(ConstVecRef r_x, const Eigen::VectorXd& w, Eigen::VectorXd& out) const;
-  bool solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v, CgStart start);
+  bool solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v, CgStart start,
+                     double tolerance);
 
   const ClothSystem& m_system;
   ReducedSolve m_method;

@@ -48,11 +48,23 @@ TEST(ReducedNewtonSolver, MatchesADenseSolveOfTheFullSystem) {
   }
 }
 
-TEST(ReducedNewtonSolver, NewGammaReusesTheJacobian) {
+// The damped pinned cloth at a jittered state (seed) and a random right-hand side (seed + 1).
+struct JitteredProblem {
+  std::unique_ptr<ClothSystem> s;
+  Eigen::Index n3;
+  Eigen::VectorXd y, r;
+};
+
+JitteredProblem jittered_problem(unsigned seed) {
   auto s = testing::pinned_test_cloth(0.05, 0.01);
   const Eigen::Index n3 = 3 * s->num_particles();
-  const Eigen::VectorXd y = testing::jitter(s->initial_state(0.0), 0.003, 9);
-  const Eigen::VectorXd r = testing::jitter(Eigen::VectorXd::Zero(2 * n3), 1.0, 10);
+  Eigen::VectorXd y = testing::jitter(s->initial_state(0.0), 0.003, seed);
+  Eigen::VectorXd r = testing::jitter(Eigen::VectorXd::Zero(2 * n3), 1.0, seed + 1);
+  return {std::move(s), n3, std::move(y), std::move(r)};
+}
+
+TEST(ReducedNewtonSolver, NewGammaReusesTheJacobian) {
+  auto [s, n3, y, r] = jittered_problem(9);
   ReducedNewtonSolver solver(*s, ReducedSolve::sparse_ldlt, ForceSplit::all, 1e-13, 500);
   EXPECT_FALSE(solver.has_jacobian());
   solver.update(y.head(n3), y.tail(n3), 0.01);
@@ -123,6 +135,22 @@ TEST(ReducedNewtonSolver, MultigridNeedsFarFewerIterationsThanBlockJacobi) {
     iterations[method == ReducedSolve::multigrid_cg] = solver.iterations();
   }
   EXPECT_LT(4 * iterations[1], iterations[0]) << iterations[1] << " vs " << iterations[0];
+}
+
+// The line-search Newton's forcing term (line_search_newton.cpp): a solve's own relative
+// residual replaces the constructor's, and 0 keeps the constructor's.
+TEST(ReducedNewtonSolver, SolveTolerancesOverrideTheConstructors) {
+  auto [s, n3, y, r] = jittered_problem(11);
+  ReducedNewtonSolver solver(*s, ReducedSolve::conjugate_gradients, ForceSplit::all, 1e-13, 500);
+  solver.update(y.head(n3), y.tail(n3), 1.0 / 30.0);
+  Eigen::VectorXd exact(2 * n3), loose(2 * n3);
+  ASSERT_TRUE(solver.solve(r, exact, CgStart::zero, 0.0));
+  const long tight_iterations = solver.iterations();
+  ASSERT_TRUE(solver.solve(r, loose, CgStart::zero, 1e-2));
+  const long loose_iterations = solver.iterations() - tight_iterations;
+  EXPECT_LT(2 * loose_iterations, tight_iterations);
+  EXPECT_GT((loose - exact).norm(), 1e-10 * exact.norm());  // stopped early, not converged
+  EXPECT_LT((loose - exact).norm(), 0.1 * exact.norm());
 }
 
 TEST(ReducedNewtonSolver, LinearSolverNames) {
