@@ -9,10 +9,13 @@ summary, 3-D viewer pages (report/view/, written with `PATH view`) and the full 
 `drapelab report DIR` runs this script and passes itself as --drapelab.
 """
 import argparse
+import concurrent.futures
 import csv
 import html
+import itertools
 import json
 import math
+import os
 import sys
 from collections import Counter
 from pathlib import Path
@@ -68,8 +71,13 @@ def add_metrics(directory, results):
     rows = results["runs"]
     by_id = {row["id"]: row for row in rows}
     out, windows = [], {}
-    for row in rows:
-        extra, run_windows = metrics.run_metrics(directory, row, by_id)
+    # Runs are independent and their metrics most of a report's time (reading and filtering the
+    # event traces): one process a core; map keeps the plan's order, and a run's error (a broken
+    # file, named) is raised here as it would be in a loop.
+    with concurrent.futures.ProcessPoolExecutor(max_workers=min(os.cpu_count() or 1, len(rows) or 1)) as pool:
+        computed = list(pool.map(metrics.run_metrics, itertools.repeat(directory), rows,
+                                 itertools.repeat(by_id)))
+    for row, (extra, run_windows) in zip(rows, computed):
         out.append({**row, **extra})
         if run_windows:
             windows[row["id"]] = run_windows
@@ -244,34 +252,51 @@ CAPTIONS = {
 }
 
 
-def make_figures(directory, out_dir, rows, parameters):
-    """Every figure the table supports, as (stem, caption)."""
+# The experiment's `metrics` (docs/experiments.md) each figure belongs to.
+FIGURE_METRIC = {
+    "energy_vs_time": "energy_drift", "energy_by_scene": "energy_drift",
+    "work_precision": "work_precision", "attach_error_vs_iterations": "attach_error",
+    "attach_error_vs_time": "attach_error", "vibration_vs_dt": "vibration",
+    "vibration_events_vs_dt": "vibration", "contact_switch_vs_dt": "vibration",
+    "stable_dt": "stable_dt",
+}
+
+
+def make_figures(directory, out_dir, rows, parameters, shown=()):
+    """Every figure the table supports and the experiment's `metrics` ask for (all when it names
+    none), as (stem, caption)."""
+    def wanted(metric):
+        return not shown or metric in shown
+
     def settle_time(row):
         return plots.number(row.get("manipulation.attach_iterations")) * plots.number(row.get("dt"))
 
     detail = plots.INTEGRATOR_DETAIL[1:]
-    figures = [
-        ("energy_vs_time", plots.energy_vs_time(directory, out_dir, rows, parameters)),
-        ("energy_by_scene", plots.energy_by_scene(directory, out_dir, rows, parameters)),
-        ("work_precision", plots.work_precision(out_dir, rows, parameters)),
-        ("attach_error_vs_iterations", plots.line_plot(
+    makers = [
+        ("energy_vs_time", lambda: plots.energy_vs_time(directory, out_dir, rows, parameters)),
+        ("energy_by_scene", lambda: plots.energy_by_scene(directory, out_dir, rows, parameters)),
+        ("work_precision", lambda: plots.work_precision(out_dir, rows, parameters)),
+        ("attach_error_vs_iterations", lambda: plots.line_plot(
             out_dir, "attach_error_vs_iterations", rows, parameters, "manipulation.attach_iterations",
             "attach_error_mean", "attach iterations", "attach error [m]", exclude=detail)),
-        ("attach_error_vs_time", plots.line_plot(
+        ("attach_error_vs_time", lambda: plots.line_plot(
             out_dir, "attach_error_vs_time", rows, parameters, settle_time, "attach_error_mean",
             "attach_iterations x dt [s]", "attach error [m]",
             exclude=detail + ("manipulation.attach_iterations",))
          if "manipulation.attach_iterations" in parameters else None),
-        ("vibration_vs_dt", plots.vibration_vs_dt(out_dir, rows, parameters)),
-        ("vibration_events_vs_dt", plots.vibration_vs_dt(
+        ("vibration_vs_dt", lambda: plots.vibration_vs_dt(out_dir, rows, parameters)),
+        ("vibration_events_vs_dt", lambda: plots.vibration_vs_dt(
             out_dir, rows, parameters, "vibration_rms_events", "vibration RMS, after events [m]",
             "vibration_events_vs_dt")),
-        ("contact_switch_vs_dt", plots.vibration_vs_dt(
+        ("contact_switch_vs_dt", lambda: plots.vibration_vs_dt(
             out_dir, rows, parameters, "contact_switch_rate_final",
             "contact switches [1/(particle s)]", "contact_switch_vs_dt")),
-        ("stable_dt", plots.stable_dt(out_dir, rows, parameters)),
+        ("stable_dt", lambda: plots.stable_dt(out_dir, rows, parameters)),
     ]
+    figures = [(name, make()) for name, make in makers if wanted(FIGURE_METRIC[name])]
     out = [(stem, CAPTIONS[name]) for name, stem in figures if stem]
+    if not wanted("snapshots"):
+        return out
     out += [(stem, f"{stem.rsplit('_', 1)[-1].capitalize()} view of the cloth (blue, shaded) on the object "
                    "(grey) at every manipulation and at the end (rows), the reference and one run per "
                    "integrator, its smallest step (columns); fixed particles red.")
@@ -349,7 +374,7 @@ def main():
     write_metrics(args.directory, results, rows, windows)
     out_dir = args.directory / "report"
     out_dir.mkdir(exist_ok=True)
-    figures = make_figures(args.directory, out_dir, rows, results["parameters"])
+    figures = make_figures(args.directory, out_dir, rows, results["parameters"], results.get("metrics") or ())
     videos = animate(args.directory, out_dir, rows, args.animate, args.frames) if args.animate is not None else []
     pages = (viewer_pages.write_pages(args.directory, out_dir, rows, args.drapelab)
              if args.drapelab else None)

@@ -15,6 +15,7 @@ from PIL import Image
 
 import runfolder
 import report
+from drapeanalysis import runfiles
 
 
 class ReportTableTest(unittest.TestCase):
@@ -128,6 +129,17 @@ class ReportEndToEndTest(unittest.TestCase):
         movie = (self.report / f"{self.runs[0]['id']}.mp4").read_bytes()
         self.assertGreater(len(movie), 1000)
         self.assertEqual(movie[4:8], b"ftyp", "an MP4 container")
+
+    def test_the_experiments_metrics_choose_the_figures(self):
+        # `metrics: ["energy_drift"]` (docs/experiments.md): the energy figures, no vibration
+        # figures and no snapshots (which cost a large report a third of its time).
+        out = self.directory / "only_energy"
+        out.mkdir()
+        results = runfiles.load_experiment(self.directory)
+        stems = [stem for stem, _ in report.make_figures(self.directory, out, results["runs"],
+                                                         results["parameters"], ("energy_drift",))]
+        self.assertIn("energy_vs_time", stems)
+        self.assertFalse([s for s in stems if s.startswith(("vibration", "snapshots"))], stems)
 
     def test_example_redraws_a_figure(self):
         out = self.directory / "example" / "energy_b"
