@@ -92,6 +92,11 @@ def hand_jitter(hands, t0, t1, cutoff_hz):
     return max(values) if values else 0.0
 
 
+def _event_times(summary):
+    """The times of a run's events (ignored keys left out), each once, in order."""
+    return sorted({float(e["t"]) for e in summary.get("events", []) if e.get("type") != "ignored"})
+
+
 def vibration(run, summary, window=VIBRATION_WINDOW):
     """Vibration after every event (to the next event or `window` seconds) and over the last
     `window` seconds of the run, above the cutoff derived from the run's scene. The windows after
@@ -109,7 +114,7 @@ def vibration(run, summary, window=VIBRATION_WINDOW):
     hands = runfiles.read_hands(run / "hands.csv") if (run / "hands.csv").exists() else None
     after_events = fine if fine is not None else trace
     end = float((trace if trace is not None else fine)["t"][-1])
-    times = sorted({float(e["t"]) for e in summary.get("events", []) if e.get("type") != "ignored"})
+    times = _event_times(summary)
     windows = []
     for k, t0 in enumerate(times):
         t1 = min(t0 + window, times[k + 1] if k + 1 < len(times) else end, end)
@@ -221,10 +226,6 @@ def reference_error(run, reference_run):
                          f"{reference_run / 'state.csv'} has {len(b)}")
     d = np.linalg.norm(a - b, axis=1)
     return {"error_rms": float(np.sqrt(np.mean(d**2))), "error_max": float(d.max())}
-
-
-def _event_times(summary):
-    return sorted({float(e["t"]) for e in summary.get("events", []) if e.get("type") != "ignored"})
 
 
 def _distance_rms(run_trace, reference_trace, t):

@@ -44,6 +44,13 @@ ComplexVector stage_values(const ButcherTableau& t, std::complex<double> w) {
   return y;
 }
 
+// R(z) = 1 + z b^T Y from the stage values Y = stage_values(t, 1 / z) (real weights: Eigen's
+// conjugating dot product is the plain one).
+std::complex<double> stability_from_stages(const Eigen::VectorXcd& weights, std::complex<double> z,
+                                           const ComplexVector& stages) {
+  return 1.0 + z * weights.dot(stages);
+}
+
 // e_m(X), the sum of X's principal minors of order m.
 double principal_minor_sum(const Eigen::MatrixXd& x, int m) {
   double sum = 0.0;
@@ -97,7 +104,8 @@ double implicit_inverse_norm(const Eigen::MatrixXd& a) {
 }  // namespace
 
 std::complex<double> stability_function(const ButcherTableau& t, std::complex<double> z) {
-  return 1.0 + z * weights_of(t).cast<std::complex<double>>().dot(stage_values(t, 1.0 / z));
+  return stability_from_stages(weights_of(t).cast<std::complex<double>>(), z,
+                               stage_values(t, 1.0 / z));
 }
 
 std::vector<std::complex<double>> stage_stability_functions(const ButcherTableau& t,
@@ -119,12 +127,16 @@ TableStability table_stability(const ButcherTableau& t) {
   out.algebraic_stability = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m).eigenvalues()(0);
   const std::size_t s = t.c.size();
   out.stage_max_imaginary_axis.assign(s, 0.0);
+  const Eigen::VectorXcd weights = b.cast<std::complex<double>>();
   for (const double y : imaginary_axis_samples()) {
+    // One forward substitution a sample gives both R(iy) and the stage values.
+    const std::complex<double> z{0.0, y};
+    const ComplexVector stages = stage_values(t, 1.0 / z);
     out.max_imaginary_axis =
-        std::max(out.max_imaginary_axis, std::abs(stability_function(t, {0.0, y})));
-    const auto stages = stage_stability_functions(t, {0.0, y});
+        std::max(out.max_imaginary_axis, std::abs(stability_from_stages(weights, z, stages)));
     for (std::size_t i = 0; i < s; ++i)
-      out.stage_max_imaginary_axis[i] = std::max(out.stage_max_imaginary_axis[i], std::abs(stages[i]));
+      out.stage_max_imaginary_axis[i] =
+          std::max(out.stage_max_imaginary_axis[i], std::abs(stages(static_cast<Eigen::Index>(i))));
   }
   out.stiff_limit = stiff_limit_of(a, b);
   for (const auto& r : stage_values(t, 0.0)) out.stage_stiff_limit.push_back(std::abs(r));
