@@ -369,8 +369,14 @@ def main():
     args = parser.parse_args()
     if not (args.directory / "results.json").exists():
         sys.exit(f"{args.directory}: no results.json (run `drapelab experiment` or `drapelab merge` first)")
-    results = runfiles.load_experiment(args.directory)
-    rows, windows = add_metrics(args.directory, results)
+    try:
+        results = runfiles.load_experiment(args.directory)
+        rows, windows = add_metrics(args.directory, results)
+    except ValueError as e:
+        # A malformed run file: its message names the file and the field; exit 2 as drapelab
+        # does for bad input, without a traceback.
+        print(f"report.py: error: {e}", file=sys.stderr)
+        sys.exit(2)
     write_metrics(args.directory, results, rows, windows)
     out_dir = args.directory / "report"
     out_dir.mkdir(exist_ok=True)

@@ -148,6 +148,19 @@ class ReportEndToEndTest(unittest.TestCase):
             self.assertTrue(out.with_suffix(f".{fmt}").stat().st_size > 0)
 
 
+class ReportBadInputTest(unittest.TestCase):
+    def test_a_malformed_run_file_is_named_with_exit_2(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            runs = runfolder.write_experiment(Path(tmp))
+            energy = Path(tmp) / runs[0]["run_dir"] / "energy.csv"
+            energy.write_text("x\n1\n")
+            done = subprocess.run([sys.executable, str(ANALYSIS / "report.py"), tmp],
+                                  capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=str(ANALYSIS)))
+            self.assertEqual(done.returncode, 2, done.stderr)
+            self.assertIn(f"{energy}: missing column(s) t, total", done.stderr)
+            self.assertNotIn("Traceback", done.stderr)
+
+
 class ReportProvenanceAndViewerTest(unittest.TestCase):
     """The provenance block from the results rows, the runs paired side by side in the viewer,
     and the viewer links of report.html (the pages themselves: report_viewer_check.py)."""

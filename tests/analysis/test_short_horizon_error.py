@@ -55,6 +55,16 @@ class ShortHorizonErrorTest(RunFolderTest):
         runfolder.write_summary(bare, hold, runfolder.CLOTH_SCENE)
         self.assertEqual(metrics.short_horizon_error(run, bare), {})
 
+    def test_a_reference_with_other_particles_names_both_traces(self):
+        hold = [{"t": 0.2, "type": "hold", "hand": "left"}]
+        run = self.write("a", hold, 0.0)
+        other = self.make_run("ref")
+        runfolder.write_summary(other, hold, runfolder.CLOTH_SCENE)
+        t = frames([0.0, 0.2], 0.7)
+        runfolder.write_event_trace(other, t, np.zeros((len(t), 3, 3)))
+        with self.assertRaisesRegex(ValueError, r"a/event_trace: 2 particles, the reference .*ref/event_trace has 3"):
+            metrics.short_horizon_error(run, other)
+
     def test_close_events_both_count(self):
         # The release 0.01 s after the hold: 1/30 s after the hold falls in the release's window.
         events = [{"t": 0.2, "type": "hold", "hand": "left"}, {"t": 0.21, "type": "release"}]
