@@ -273,6 +273,38 @@ def short_horizon_error(run, reference_run, horizon=SHORT_HORIZON):
             "short_error_events_n": len(after)}
 
 
+def restart_error(run):
+    """The restart error (docs/analysis.md, "Restart error") from restart_error.csv. At the first
+    horizon: `restart_error_start` (from the common start), `restart_error_events` (mean over
+    the branches after the reference's events), `restart_error_after_<kind>` (over the events of
+    one kind), `restart_error_events_rel` (mean of error / the reference's own motion over the
+    horizon); for every later horizon `restart_error_events_<ms>ms`; `restart_error_failed`, the
+    branches that diverged or failed (left out of the means). Empty without the file."""
+    path = run / "restart_error.csv"
+    if not path.exists():
+        return {}
+    measured = ("error_rms", "error_max", "reference_motion_rms")
+    rows = runfiles.read_csv(path, ("t", "horizon") + measured, ("events", "status"), measured)
+    out = {"restart_error_failed": int((rows["status"] != "ok").sum())}
+    horizons = sorted(rows["horizon"].unique())
+    for k, horizon in enumerate(horizons):
+        at = rows[(rows["horizon"] == horizon) & (rows["status"] == "ok")]
+        events = at[at["events"] != "start"]
+        mean = float(events["error_rms"].mean()) if len(events) else math.nan
+        if k > 0:
+            out[f"restart_error_events_{1e3 * horizon:.0f}ms"] = mean
+            continue
+        start = at[at["events"] == "start"]["error_rms"]
+        out["restart_error_start"] = float(start.iloc[0]) if len(start) else math.nan
+        out["restart_error_events"] = mean
+        out["restart_error_events_rel"] = (float((events["error_rms"] / events["reference_motion_rms"]).mean())
+                                           if len(events) else math.nan)
+        for kind in EVENT_KINDS:
+            of_kind = events[events["events"] == kind]["error_rms"]
+            out[f"restart_error_after_{kind}"] = float(of_kind.mean()) if len(of_kind) else math.nan
+    return out
+
+
 def run_metrics(directory, row, rows_by_id):
     """Every metric the files of one run support, and the per-event vibration windows."""
     run = runfiles.run_dir(directory, row)
@@ -285,6 +317,7 @@ def run_metrics(directory, row, rows_by_id):
     vib, windows = vibration(run, summary)
     out.update(vib)
     out.update(mapping_error(run, summary))
+    out.update(restart_error(run))
     reference = rows_by_id.get(row.get("reference") or "")
     if reference is not None:
         out.update(reference_error(run, runfiles.run_dir(directory, reference)))

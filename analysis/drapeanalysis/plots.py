@@ -5,7 +5,7 @@ import math
 import matplotlib.pyplot as plt
 import numpy as np
 
-from . import runfiles, snapshots as snapshot_views, style
+from . import runfiles, snapshots as snapshot_views, stats, style
 from .style import integrator_color
 
 # Keys that never name a series: they vary with the x value by construction (a case's duration
@@ -173,13 +173,16 @@ def energy_by_scene(directory, out_dir, rows, parameters):
 
 def work_precision(out_dir, rows, parameters):
     """Error against the reference run vs right-hand-side evaluations and wall time, one row of
-    panels per scene, one line per integrator (its steps joined)."""
-    if not any(math.isfinite(number(row.get("error_rms"))) for row in rows):
+    panels per scene, one line per integrator (its steps joined). The error is the restart error
+    after the events where the runs measured it (docs/analysis.md), else the final positions'."""
+    error_key = ("restart_error_events" if any(math.isfinite(number(row.get("restart_error_events")))
+                                               for row in rows) else "error_rms")
+    if not any(math.isfinite(number(row.get(error_key))) for row in rows):
         return None
     by_scene = {}
     for row in rows:
         scene = by_scene.setdefault(scene_name(row), [])
-        if not row.get("is_reference") and math.isfinite(number(row.get("error_rms"))):
+        if not row.get("is_reference") and math.isfinite(number(row.get(error_key))):
             scene.append(row)
     fig, axes = plt.subplots(len(by_scene), 2, figsize=(10, 3.2 * len(by_scene)), squeeze=False,
                              sharey="row")
@@ -196,7 +199,7 @@ def work_precision(out_dir, rows, parameters):
                 key_name = str(row.get("integrator", "?")) + (f", {rest}" if rest != scene_name(row) else "")
                 colors[key_name] = integrator_color(row)
                 groups.setdefault(key_name, []).append(
-                    (number(row.get(key)), number(row.get("error_rms")), row.get("integrator.dt")))
+                    (number(row.get(key)), number(row.get(error_key)), row.get("integrator.dt")))
             for series_name, points in sorted(groups.items()):
                 points.sort()
                 xs, ys, dts = zip(*points)
@@ -209,9 +212,48 @@ def work_precision(out_dir, rows, parameters):
             ax.set_title(name)
             ax.set_xlabel("right-hand-side evaluations" if key == "rhs_evals" else "wall time [s]")
             ax.grid(True, which="both", alpha=0.3)
-        axes[r, 0].set_ylabel("RMS final position error [m]")
+        axes[r, 0].set_ylabel("RMS error 1/30 s after the events,\nrestarted from the reference [m]"
+                              if error_key == "restart_error_events" else "RMS final position error [m]")
     style.legend_beside(axes[0, 1])
     return style.save(fig, out_dir, "work_precision")
+
+
+def restart_error_vs_horizon(directory, out_dir, rows, parameters):
+    """Restart error after the events against the horizon (docs/analysis.md, "Restart error"),
+    one panel per scene, one line per method: the mean over its runs of each run's mean over its
+    event branches, bars the 95 % interval over the runs."""
+    panels, colors = {}, {}
+    for row in rows:
+        path = runfiles.run_dir(directory, row) / "restart_error.csv"
+        if row.get("is_reference") or not path.exists():
+            continue
+        branches = runfiles.read_csv(path, ("horizon", "error_rms"), ("events", "status"), ("error_rms",))
+        after = branches[(branches["events"] != "start") & (branches["status"] == "ok")]
+        rest = label(row, parameters, ("integrator.dt", "perturbation.seed") + INTEGRATOR_DETAIL)
+        name = method_label(row) + (f", {rest}" if rest != scene_name(row) else "")
+        colors[name] = integrator_color(row)
+        per_run = after.groupby("horizon")["error_rms"].mean()
+        panel = panels.setdefault(scene_name(row), {}).setdefault(name, {})
+        for horizon, value in per_run.items():
+            panel.setdefault(horizon, []).append(value)
+    if not panels:
+        return None
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 3.6), squeeze=False, sharey=True)
+    for ax, (scene, groups) in zip(axes[0], sorted(panels.items())):
+        for name, by_horizon in sorted(groups.items()):
+            horizons = sorted(by_horizon)
+            means = [np.mean(by_horizon[h]) for h in horizons]
+            half = [stats.t_quantile(0.975, len(by_horizon[h]) - 1) * np.std(by_horizon[h], ddof=1)
+                    / math.sqrt(len(by_horizon[h])) if len(by_horizon[h]) > 1 else 0.0 for h in horizons]
+            ax.errorbar(horizons, means, yerr=half, marker="o", capsize=3, label=name, color=colors[name])
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(scene)
+        ax.set_xlabel("horizon after the event [s]")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0, 0].set_ylabel("RMS error against the reference [m]")
+    style.legend_below(fig, axes.ravel(), ncol=2)
+    return style.save(fig, out_dir, "restart_error_vs_horizon")
 
 
 def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",

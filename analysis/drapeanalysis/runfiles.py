@@ -22,9 +22,9 @@ def read_json(path):
             raise ValueError(f"{path}: not valid JSON: {e}") from e
 
 
-def read_csv(path, columns=(), text_columns=()):
+def read_csv(path, columns=(), text_columns=(), nan_columns=()):
     """A CSV file as a DataFrame; `columns` must be present, and every column but `text_columns`
-    must hold numbers."""
+    must hold numbers (`nan_columns` may also hold nan: a quantity not measured)."""
     try:
         frame = pd.read_csv(path, dtype={c: str for c in text_columns})
     except pd.errors.EmptyDataError as e:
@@ -42,8 +42,10 @@ def read_csv(path, columns=(), text_columns=()):
             continue
         numbers = pd.to_numeric(frame[name], errors="coerce")
         bad = numbers.isna() & frame[name].notna()
-        if bad.any() or frame[name].isna().any():
-            row = int(np.argmax(bad.to_numpy() | frame[name].isna().to_numpy()))
+        if name not in nan_columns:
+            bad |= frame[name].isna()
+        if bad.any():
+            row = int(np.argmax(bad.to_numpy()))
             raise ValueError(f"{path}: row {row + 1}, column {name}: not a number "
                              f"({frame[name].iloc[row]!r})")
         frame[name] = numbers.astype(float)

@@ -84,6 +84,13 @@ Manipulator::Manipulator(ClothSystem& system, const HandTrack* track,
   m_hands = {HandState{Hand::Left}, HandState{Hand::Right}};
 }
 
+void Manipulator::copy_state_from(const Manipulator& other) {
+  m_hands = other.m_hands;
+  m_attaching = other.m_attaching;
+  m_next_key = other.m_next_key;
+  m_events = other.m_events;
+}
+
 double Manipulator::next_key_time(double t) const {
   if (!m_track) return std::numeric_limits<double>::infinity();
   for (std::size_t k = m_next_key; k < m_track->keys().size(); ++k)

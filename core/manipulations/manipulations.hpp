@@ -55,6 +55,10 @@ class Manipulator {
   /// Both hands at time t against state y.
   std::vector<HandStatus> hands(double t, const Eigen::VectorXd& y) const;
   const std::vector<ManipulationEvent>& events() const { return m_events; }
+  /// Takes over another manipulator's progress (hands, pending attaches, keys applied, events)
+  /// on the same scene, so that a branch continues where `other` is (the restart error). The
+  /// fixed particles live in the system and are copied with it.
+  void copy_state_from(const Manipulator& other);
 
  private:
   struct HandState {

@@ -171,6 +171,25 @@ Perturbation read_perturbation(JsonReader in) {
   return p;
 }
 
+RestartErrorOptions read_restart_error(JsonReader in, double duration) {
+  RestartErrorOptions r;
+  r.reference = in.raw("reference");
+  if (!r.reference.is_object()) throw in.error("reference", "expected an integrator object");
+  r.horizons = in.numbers("horizons");
+  if (r.horizons.empty() || r.horizons.size() > limits::max_restart_horizons)
+    throw in.error("horizons", "expected 1 to " + std::to_string(limits::max_restart_horizons) +
+                                   " horizons");
+  for (std::size_t k = 0; k < r.horizons.size(); ++k) {
+    const std::string key = "horizons[" + std::to_string(k) + "]";
+    if (!(r.horizons[k] > 0.0) || r.horizons[k] > duration)
+      throw in.error(key, "must be in (0, duration = " + nlohmann::json(duration).dump() + " s]");
+    if (k > 0 && !(r.horizons[k] > r.horizons[k - 1]))
+      throw in.error(key, "horizons must ascend");
+  }
+  in.finish();
+  return r;
+}
+
 // An output interval: 0 (every step, or none) or long enough to advance time and to keep the
 // file within limits::max_output_rows.
 double output_interval(JsonReader& in, const std::string& key, double fallback, double duration,
@@ -261,6 +280,8 @@ Scene parse_scene(const nlohmann::json& source, const std::string& file,
                                           : JsonReader(nlohmann::json::object(), file, "output"),
                          s.duration, s.cloth);
   if (in.has("perturbation")) s.perturbation = read_perturbation(in.object("perturbation"));
+  if (in.has("restart_error"))
+    s.restart_error = read_restart_error(in.object("restart_error"), s.duration);
   in.finish();
   return s;
 }

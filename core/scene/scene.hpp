@@ -32,6 +32,16 @@ struct Perturbation {
   bool gaussian = false;   ///< false: uniform in [-a, a] per coordinate; true: normal, std a
 };
 
+/// The restart error of the integrator against a reference (docs/analysis.md, "Restart
+/// error"): the reference integrator runs the scene, and the scene's own integrator restarts from
+/// the reference's state at its start and after each of its events for each horizon. Off while
+/// `reference` is null.
+struct RestartErrorOptions {
+  nlohmann::json reference;      ///< the reference's `integrator` object (read by integrators/)
+  std::vector<double> horizons;  ///< ascending horizons [s]
+  bool enabled() const { return !reference.is_null(); }
+};
+
 /// One scene: cloth, pins, forces, object, duration, manipulation, input and output.
 struct Scene {
   std::string file;                ///< the scene file (for messages)
@@ -47,6 +57,7 @@ struct Scene {
   ManipulationParams manipulation;
   OutputOptions output;
   Perturbation perturbation;
+  RestartErrorOptions restart_error;
   nlohmann::json source;  ///< the whole scene as read, overrides applied
 };
 

@@ -3,6 +3,7 @@
 // Limits). They are physically generous: no draping scene comes near them, and below them no
 // product the model forms (k * length, m * g * height, rows * cols, duration / dt) overflows a
 // double or a 64-bit count, so a run either works or ends `diverged` with its summary.
+#include <cstddef>
 #include <cstdint>
 
 namespace drape::limits {
@@ -21,6 +22,8 @@ constexpr double max_mass = 1e6;
 constexpr double max_gravity = 1e3;
 /// Simulated time [s].
 constexpr double max_duration = 1e6;
+/// Horizons of restart_error: each one reruns the scene's method after every event.
+constexpr std::size_t max_restart_horizons = 16;
 /// Rows of an output file implied by an interval: rows per frame x frames (trace.csv, frames/),
 /// or frames (energy.csv, hands.csv).
 constexpr double max_output_rows = 1e9;

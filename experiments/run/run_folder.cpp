@@ -33,7 +33,8 @@ const std::vector<std::string>& run_file_names() {
   // summary.json first: clearing removes the mark of a complete folder before anything else.
   static const std::vector<std::string> names = {
       "summary.json", "summary.json.tmp", "energy.csv", "state.csv", "dummy.csv",
-      "hands.csv",    "trace.csv",        "frames",    "event_trace"};
+      "hands.csv",    "trace.csv",        "frames",    "event_trace", "restart_error.csv",
+      "restart_error.csv.tmp"};
   return names;
 }
 

@@ -5,6 +5,7 @@
 #include "experiments/run/event_trace_recorder.hpp"
 #include "experiments/run/frame_recorder.hpp"
 #include "experiments/run/provenance.hpp"
+#include "experiments/run/reference_restarts.hpp"
 #include "experiments/run/run_files.hpp"
 #include "experiments/run/run_folder.hpp"
 #include "experiments/run/scene_simulation.hpp"
@@ -69,6 +70,8 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
   SceneSimulation run(scene);
   Simulation& simulation = run.simulation();
   const ClothSystem& system = run.system();
+  std::optional<ReferenceRestarts> restarts;
+  if (scene.restart_error.enabled()) restarts.emplace(scene);
 
   // Built (and so validated) first; then no file of an earlier run may stay beside this one's.
   clear_run_folder(out_dir);
@@ -89,6 +92,8 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
   const RunStatus& status = simulation.run();
   nlohmann::json summary = run_summary(run, energy);
   summary.update(provenance);
+  // After the run, on simulations of their own: the run's steps are the same with or without.
+  if (restarts) summary["restart_error"] = restarts->run(out_dir / "restart_error.csv");
   if (status.status == "ok") write_state_csv(out_dir / "state.csv", system, simulation.state());
   write_json(out_dir / "summary.json", summary);  // last: the folder is complete from here
   const int code = status.status == "ok" ? exit_ok : exit_diverged;

@@ -7,10 +7,10 @@
 
 namespace drape {
 
-SceneSimulation::SceneSimulation(const Scene& scene)
+SceneSimulation::SceneSimulation(const Scene& scene, const std::string& integrator_field)
     : m_scene(scene),
-      m_options(read_integrator_options(scene.integrator, scene.file, "integrator")) {
-  check_run_limits(scene, m_options);
+      m_options(read_integrator_options(scene.integrator, scene.file, integrator_field)) {
+  check_run_limits(scene, m_options, integrator_field);
   std::shared_ptr<const Dummy> dummy;
   if (!scene.dummy.is_null())
     dummy = std::make_shared<const Dummy>(make_dummy(scene.dummy, scene.file, "dummy", scene.base_dir));

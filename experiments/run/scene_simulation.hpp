@@ -3,6 +3,7 @@
 // manipulator and the integrator it names, built once and owned together.
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "core/input/input_config.hpp"
 #include "core/scene/scene.hpp"
@@ -12,10 +13,11 @@
 namespace drape {
 
 /// Everything one scene runs with. Throws InputError (naming the scene file and the field) for
-/// invalid input found while building.
+/// invalid input found while building; errors in the integrator name `integrator_field` (the
+/// restart error's reference is read from another field).
 class SceneSimulation {
  public:
-  explicit SceneSimulation(const Scene& scene);
+  explicit SceneSimulation(const Scene& scene, const std::string& integrator_field = "integrator");
 
   Simulation& simulation() { return *m_simulation; }
   const Simulation& simulation() const { return *m_simulation; }

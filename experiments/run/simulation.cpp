@@ -54,6 +54,17 @@ const RunStatus& Simulation::run() {
   return m_status;
 }
 
+void Simulation::branch_from(const Simulation& other) {
+  m_system.constraints() = other.m_system.constraints();
+  m_manipulator.copy_state_from(other.m_manipulator);
+  m_t = m_t0 = other.time();
+  const Eigen::VectorXd& y = other.state();
+  if (m_keep_step_ends) m_y0 = m_y1 = y;
+  m_integrator.reset(m_t, y);
+  m_divergence.account_for(m_system, energy_of(m_system, y));
+  m_status = RunStatus{};
+}
+
 bool Simulation::at_end() const { return m_t >= m_settings.duration - end_tolerance(m_settings.duration); }
 
 double Simulation::next_landing_time() const {

@@ -68,6 +68,13 @@ class Simulation {
   bool advance(double t_until);
   /// Runs to the end of the scene and returns how it ended.
   const RunStatus& run();
+  /// Continues from `other`, a simulation of the same scene: its time, state, fixed particles
+  /// and manipulation progress; this integrator restarts there and the status is `running`
+  /// again. `other` is only read (a branch of the reference, reference_restarts.hpp).
+  void branch_from(const Simulation& other);
+  /// Keeps each step's two end states so that interpolate() works without an interpolating
+  /// observer; it never changes a step.
+  void keep_step_ends() { m_keep_step_ends = true; }
 
   double time() const { return m_t; }
   /// The state at time(), after any event applied there.

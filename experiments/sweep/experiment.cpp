@@ -11,6 +11,7 @@
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
+#include "core/scene/scene.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "core/scene/json_text.hpp"
 
@@ -143,7 +144,7 @@ std::string Shard::tag() const { return fmt::format("{}-of-{}", index, count); }
 const std::vector<std::string>& known_metrics() {
   static const std::vector<std::string> names = {"energy_drift", "vibration",   "attach_error",
                                                  "mapping_error", "work_precision", "stable_dt",
-                                                 "snapshots"};
+                                                 "restart_error", "snapshots"};
   return names;
 }
 
@@ -221,6 +222,13 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
     e.reference = read_overrides(in, "reference");
     if (e.reference.empty()) throw in.error("reference", "must set at least one value");
   }
+  if (in.has("restart_error")) {
+    if (e.reference.empty())
+      throw in.error("restart_error", "needs a reference: the runs restart from its states");
+    JsonReader restart = in.object("restart_error");
+    e.restart_horizons = restart.numbers("horizons");
+    restart.finish();
+  }
   if (in.has("bisect")) e.bisect = read_bisect(in.object("bisect"));
 
   if (in.has("metrics")) {
@@ -269,6 +277,14 @@ void plan_run(const Experiment& e, RunSpec run, std::vector<RunSpec>& plan,
     ref.overrides.insert(ref.overrides.end(), ref.parameters.begin(), ref.parameters.end());
     ref.id = run_id(ref);
     run.reference = ref.id;
+    // The restart error's reference is the reference run's integrator, as its scene reads it
+    // (scene.md, restart_error); its horizons are checked with the run's scene.
+    if (!e.restart_horizons.empty()) {
+      const Scene ref_scene = load_scene(ref.scene_path.string(), ref.assignments());
+      run.overrides.emplace_back("restart_error",
+                                 nlohmann::json{{"reference", ref_scene.integrator},
+                                                {"horizons", e.restart_horizons}});
+    }
     references.push_back(std::move(ref));
   }
   append_run(plan, ids, std::move(run));

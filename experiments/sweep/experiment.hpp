@@ -33,6 +33,9 @@ struct Experiment {
   std::vector<std::pair<std::string, std::vector<nlohmann::json>>> sweep;  ///< cartesian product
   std::vector<std::vector<Override>> cases;      ///< explicit combinations, times the sweep
   std::vector<Override> reference;               ///< overrides that make a run's reference run
+  /// With a reference: every other run measures its restart error (docs/analysis.md, "Restart
+  /// error") over these horizons [s]; empty: none.
+  std::vector<double> restart_horizons;
   std::optional<BisectSpec> bisect;
   int repeats = 0;  ///< 0: no ensemble; N: every run N times with perturbation.seed = 1..N
   std::vector<std::string> metrics;              ///< what the report computes and plots

@@ -170,6 +170,8 @@ void validate_runs(const std::vector<RunSpec>& runs) {
     if (run.bisect) assignments = with(assignments, run.bisect->parameter, run.bisect->low);
     const Scene scene = load_scene(run.scene_path.string(), assignments);
     read_integrator_options(scene.integrator, scene.file, "integrator");
+    if (scene.restart_error.enabled())
+      read_integrator_options(scene.restart_error.reference, scene.file, "restart_error.reference");
   }
 }
 

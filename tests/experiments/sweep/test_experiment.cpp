@@ -136,6 +136,36 @@ TEST(ExperimentPlan, ReferenceRunsShareNonIntegratorValuesAndAreAppendedOnce) {
   }
 }
 
+TEST(ExperimentPlan, RestartErrorGivesEveryRunItsReferencesIntegrator) {
+  const fs::path dir = temp_dir("restart_error");
+  write_scene(dir);
+  json source = two_by_three();
+  source["set"] = json::parse(R"({"integrator.max_steps": 100000})");
+  source["reference"] = json::parse(R"({"integrator.dt": 0.0001})");
+  source["restart_error"] = json::parse(R"({"horizons": [0.02, 0.04]})");
+  const auto plan = drape::expand_runs(parse(source, dir));
+  ASSERT_EQ(plan.size(), 6u + 1u);
+  for (const auto& run : plan) {
+    const auto restart = std::find_if(run.overrides.begin(), run.overrides.end(),
+                                      [](const auto& o) { return o.first == "restart_error"; });
+    if (run.is_reference) {
+      EXPECT_EQ(restart, run.overrides.end());
+      continue;
+    }
+    ASSERT_NE(restart, run.overrides.end()) << run.id;
+    // The reference run's integrator as its scene reads it: the scene's method, the experiment's
+    // set and the reference's values (not the run's own integrator values).
+    EXPECT_EQ(restart->second["reference"],
+              json::parse(R"({"name": "leapfrog", "dt": 0.0001, "max_steps": 100000})"));
+    EXPECT_EQ(restart->second["horizons"], json::parse("[0.02, 0.04]"));
+  }
+  json no_reference = two_by_three();
+  no_reference["restart_error"] = json::parse(R"({"horizons": [0.02]})");
+  EXPECT_EQ(error_field(no_reference, dir), "restart_error");
+  source["restart_error"] = json::parse(R"({"horizons": [0.02], "every": 1})");
+  EXPECT_EQ(error_field(source, dir), "restart_error.every");
+}
+
 TEST(ExperimentPlan, ShardsPartitionThePlanExactlyOnce) {
   for (int n = 1; n <= 7; ++n) {
     std::vector<int> seen(20, 0);
