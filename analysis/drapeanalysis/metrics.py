@@ -69,9 +69,10 @@ def vibration_window(trace, t0, t1, cutoff_hz, hands=None):
     contact = trace["contact"][frames][:, free]
     speeds = np.sqrt(np.mean(np.sum(v**2, axis=-1), axis=1))
     switches = np.count_nonzero(np.diff(contact, axis=0))
+    slow, fast = spectral.split_rms(times, x, cutoff_hz)
     out.update({
-        "vibration_rms": spectral.vibration_rms(times, x, cutoff_hz),
-        "slow_motion_rms": spectral.slow_motion_rms(times, x, cutoff_hz),
+        "vibration_rms": fast,
+        "slow_motion_rms": slow,
         "vibration_velocity_rms": spectral.vibration_rms(times, v, cutoff_hz),
         "settle_time": settle_time(times, speeds, t0),
         "contact_switch_rate": switches / (free.sum() * max(times[-1] - times[0], 1e-300)),

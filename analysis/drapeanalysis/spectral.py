@@ -95,8 +95,13 @@ def slow_motion_rms(t, x, cutoff_hz):
     """RMS of the motion about the mean position below cutoff_hz (the polynomial trend and the
     detrended rest below the cutoff); slow^2 + vibration^2 = mean |x - mean|^2 but for the fast
     part's small overlap with the trend. nan as above."""
+    return split_rms(t, x, cutoff_hz)[0]
+
+
+def split_rms(t, x, cutoff_hz):
+    """(slow_motion_rms, vibration_rms) from one split (one FFT of the window)."""
     split = split_motion(t, x, cutoff_hz)
-    return math.nan if split is None else norm_rms(split[1])
+    return (math.nan, math.nan) if split is None else (norm_rms(split[1]), norm_rms(split[2]))
 
 
 def _scene(summary):

@@ -88,12 +88,12 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
   EventTraceRecorder event_frames(scene.output, out_dir, system);
   simulation.add_observer(event_frames);
   if (observer) simulation.add_observer(*observer);
+  if (restarts) simulation.add_observer(restarts->observer());
 
   const RunStatus& status = simulation.run();
   nlohmann::json summary = run_summary(run, energy);
   summary.update(provenance);
-  // After the run, on simulations of their own: the run's steps are the same with or without.
-  if (restarts) summary["restart_error"] = restarts->run(out_dir / "restart_error.csv");
+  if (restarts) summary["restart_error"] = restarts->write(out_dir / "restart_error.csv", simulation);
   if (status.status == "ok") write_state_csv(out_dir / "state.csv", system, simulation.state());
   write_json(out_dir / "summary.json", summary);  // last: the folder is complete from here
   const int code = status.status == "ok" ? exit_ok : exit_diverged;

@@ -1,5 +1,5 @@
-// The restart error (docs/analysis.md, "Restart error"): a branch of the method from the
-// reference's state measures the method's convergence order, a branch of the reference itself
+// The restart error (docs/analysis.md, "Restart error"): the reference restarted from the
+// run's state measures the run's convergence order, a reference that is the run's own method
 // reproduces it exactly (state, fixed particles and manipulation progress all carried over),
 // the run's own steps do not change, and bad input names restart_error's field.
 #include <gtest/gtest.h>
@@ -112,9 +112,9 @@ nlohmann::json held_sheet() {
   return source;
 }
 
-TEST(ReferenceRestarts, ABranchOfTheReferenceItselfReproducesItExactlyAfterEveryEvent) {
+TEST(ReferenceRestarts, TheRunsOwnMethodAsReferenceReproducesItExactlyAfterEveryEvent) {
   const std::string method = R"({"name": "leapfrog", "dt": 1e-3})";
-  // Horizons shorter than the time between the events: at the release the branch's own
+  // Horizons shorter than the time between the events: at the release the reference's own
   // simulation is still at 0.05 s, holding, so only what the branch copies makes it match.
   const auto rows = restart_rows(held_sheet(), method, method, "itself", {0.02, 0.05});
   // The start (with the hold at t = 0 already applied) and the release, two horizons each.
@@ -145,11 +145,12 @@ TEST(ReferenceRestarts, TheRunsOwnStepsAndStateDoNotChange) {
   EXPECT_EQ(plain.summary["steps"], measured.summary["steps"]);
   EXPECT_EQ(plain.summary["energy_final"], measured.summary["energy_final"]);
   EXPECT_EQ(plain.summary["events"], measured.summary["events"]);
+  EXPECT_EQ(measured.summary["restart_error"]["rows"], 2);  // the start and the release
   EXPECT_FALSE(fs::exists(plain_dir / "restart_error.csv"));
   EXPECT_TRUE(fs::exists(measured_dir / "restart_error.csv"));
 }
 
-TEST(ReferenceRestarts, ABranchThatDivergesIsReportedNotMeasured) {
+TEST(ReferenceRestarts, BranchesOfARunThatDivergesAreReportedNotMeasured) {
   auto source = sheet(0.001);
   source["cloth"]["k_structural"] = 2000;
   const auto rows = [&] {
