@@ -173,8 +173,9 @@ def energy_by_scene(directory, out_dir, rows, parameters):
 
 def work_precision(out_dir, rows, parameters):
     """Error against the reference run vs right-hand-side evaluations and wall time, one row of
-    panels per scene, one line per integrator (its steps joined). The error is the restart error
-    after the events where the runs measured it (docs/analysis.md), else the final positions'."""
+    panels per scene, one line per integrator (its steps joined; mean over repeats, 95 % bars).
+    The error is the restart error after the events where the runs measured it
+    (docs/analysis.md), else the final positions'."""
     error_key = ("restart_error_events" if any(math.isfinite(number(row.get("restart_error_events")))
                                                for row in rows) else "error_rms")
     if not any(math.isfinite(number(row.get(error_key))) for row in rows):
@@ -193,21 +194,26 @@ def work_precision(out_dir, rows, parameters):
                 style.empty_note(ax, f"{name}: no run with an error against the reference\n"
                                      "(reference or runs diverged, or no reference)")
                 continue
+            # One point per method and step: the mean over the repeats, bars their 95 % interval.
             groups, colors = {}, {}
             for row in scene_rows:
-                rest = label(row, parameters, ("integrator.dt",) + INTEGRATOR_DETAIL)
+                rest = label(row, parameters, ("integrator.dt", "perturbation.seed") + INTEGRATOR_DETAIL)
                 key_name = str(row.get("integrator", "?")) + (f", {rest}" if rest != scene_name(row) else "")
                 colors[key_name] = integrator_color(row)
-                groups.setdefault(key_name, []).append(
-                    (number(row.get(key)), number(row.get(error_key)), row.get("integrator.dt")))
-            for series_name, points in sorted(groups.items()):
-                points.sort()
-                xs, ys, dts = zip(*points)
-                ax.plot(xs, ys, "o-", label=series_name, color=colors[series_name])
+                by_step = groups.setdefault(key_name, {}).setdefault(row.get("integrator.dt"), [])
+                by_step.append((number(row.get(key)), number(row.get(error_key))))
+            points = {}
+            for series_name, by_step in sorted(groups.items()):
+                points[series_name] = sorted(
+                    (np.mean([x for x, _ in pairs]), *stats.interval([y for _, y in pairs])[1::2], dt)
+                    for dt, pairs in by_step.items())
+                xs, ys, half, _ = zip(*points[series_name])
+                ax.errorbar(xs, ys, yerr=np.nan_to_num(half), fmt="o-", capsize=3, label=series_name,
+                            color=colors[series_name])
             ax.set_xscale("log")
             ax.set_yscale("log")
-            for series_name, points in sorted(groups.items()):  # step sizes, clear of each other
-                style.place_labels(ax, [(x, y) for x, y, _ in points], [f"{dt}" for *_, dt in points],
+            for series_name, series in points.items():  # step sizes, clear of each other
+                style.place_labels(ax, [(x, y) for x, y, *_ in series], [f"{dt}" for *_, dt in series],
                                    colors[series_name])
             ax.set_title(name)
             ax.set_xlabel("right-hand-side evaluations" if key == "rhs_evals" else "wall time [s]")
@@ -242,10 +248,9 @@ def restart_error_vs_horizon(directory, out_dir, rows, parameters):
     for ax, (scene, groups) in zip(axes[0], sorted(panels.items())):
         for name, by_horizon in sorted(groups.items()):
             horizons = sorted(by_horizon)
-            means = [np.mean(by_horizon[h]) for h in horizons]
-            half = [stats.t_quantile(0.975, len(by_horizon[h]) - 1) * np.std(by_horizon[h], ddof=1)
-                    / math.sqrt(len(by_horizon[h])) if len(by_horizon[h]) > 1 else 0.0 for h in horizons]
-            ax.errorbar(horizons, means, yerr=half, marker="o", capsize=3, label=name, color=colors[name])
+            _, means, _, half = zip(*(stats.interval(by_horizon[h]) for h in horizons))
+            ax.errorbar(horizons, means, yerr=np.nan_to_num(half), marker="o", capsize=3, label=name,
+                        color=colors[name])
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(scene)

@@ -71,13 +71,21 @@ def summarise(df, group_cols, metric_cols, level=0.95):
         row = dict(zip(group_cols, key), n=len(group))
         for metric in metric_cols:
             values = pd.to_numeric(group[metric], errors="coerce").to_numpy(dtype=float)
-            values = values[np.isfinite(values)]
-            count = len(values)
-            std = float(np.std(values, ddof=1)) if count >= 2 else math.nan
-            row[f"{metric}_n"] = count
-            row[f"{metric}_mean"] = float(np.mean(values)) if count else math.nan
-            row[f"{metric}_std"] = std
-            row[f"{metric}_ci95"] = (t_quantile((1 + level) / 2, count - 1) * std / math.sqrt(count)
-                                     if count >= 2 else math.nan)
+            count, mean, std, half = interval(values, level)
+            row.update({f"{metric}_n": count, f"{metric}_mean": mean, f"{metric}_std": std,
+                        f"{metric}_ci95": half})
         rows.append(row)
     return pd.DataFrame(rows)
+
+
+def interval(values, level=0.95):
+    """(n, mean, std, half-width) over the finite values: the sample std (ddof=1) and the
+    half-width t_{(1+level)/2, n-1} std / sqrt(n) are nan for fewer than 2 values."""
+    values = np.asarray(values, dtype=float)
+    values = values[np.isfinite(values)]
+    count = len(values)
+    mean = float(np.mean(values)) if count else math.nan
+    if count < 2:
+        return count, mean, math.nan, math.nan
+    std = float(np.std(values, ddof=1))
+    return count, mean, std, t_quantile((1 + level) / 2, count - 1) * std / math.sqrt(count)
