@@ -57,6 +57,7 @@ SUMMARY_METRICS = (
     ("restart_error_after_release", "Restart error at the first horizon after a release", "mm", 1e3),
     ("restart_error_after_attach", "Restart error at the first horizon after an attach", "mm", 1e3),
     ("restart_error_events_rel", "Restart error after the events / the reference's own motion over the first horizon", "1", 1.0),
+    ("restart_motion_events", "The reference's own motion over the first horizon after the events (scale of the restart error)", "mm", 1e3),
     ("short_error_start", "RMS error against the reference 1/30 s after the start", "mm", 1e3),
     ("short_error_events_inherited", "RMS error against the reference at the events", "mm", 1e3),
     ("short_error_events", "RMS error against the reference 1/30 s after the events", "mm", 1e3),

@@ -171,17 +171,24 @@ def nearest_distances(points, objects):
     return out
 
 
+# Spring families of the grid: along a row (between columns; around the body after a map),
+# along a column (between rows; down the body) and the two diagonals.
+SPRING_FAMILIES = ("along_rows", "along_cols", "shear")
+
+
 def spring_strain(x, rows, cols, spacing):
-    """Strain (L - L0) / L0 of the structural and shear springs of a rows x cols grid."""
+    """Strain (L - L0) / L0 of the structural and shear springs of a rows x cols grid, by family
+    (SPRING_FAMILIES)."""
     grid = x.reshape(rows, cols, 3)
-    pairs = [
-        (grid[:, :-1], grid[:, 1:], spacing),
-        (grid[:-1, :], grid[1:, :], spacing),
-        (grid[:-1, :-1], grid[1:, 1:], spacing * math.sqrt(2)),
-        (grid[:-1, 1:], grid[1:, :-1], spacing * math.sqrt(2)),
-    ]
-    strains = [((np.linalg.norm(b - a, axis=-1) - rest) / rest).ravel() for a, b, rest in pairs]
-    return np.concatenate(strains)
+
+    def strain(a, b, rest):
+        return ((np.linalg.norm(b - a, axis=-1) - rest) / rest).ravel()
+
+    diagonal = spacing * math.sqrt(2)
+    return {"along_rows": strain(grid[:, :-1], grid[:, 1:], spacing),
+            "along_cols": strain(grid[:-1, :], grid[1:, :], spacing),
+            "shear": np.concatenate([strain(grid[:-1, :-1], grid[1:, 1:], diagonal),
+                                     strain(grid[:-1, 1:], grid[1:, :-1], diagonal)])}
 
 
 def mapping_error(run, summary):
@@ -208,11 +215,17 @@ def mapping_error(run, summary):
     out = {}
     for stage, x in states.items():
         gap = nearest_distances(x, objects) - delta
-        strain = spring_strain(x, rows, cols, spacing)
+        families = spring_strain(x, rows, cols, spacing)
+        strain = np.concatenate(list(families.values()))
         out[f"mapping_gap_mean_{stage}"] = float(np.mean(np.abs(gap)))
         out[f"mapping_gap_max_{stage}"] = float(np.max(np.abs(gap)))
         out[f"spring_strain_rms_{stage}"] = float(np.sqrt(np.mean(strain**2)))
         out[f"spring_strain_max_{stage}"] = float(np.max(np.abs(strain)))
+        # Which springs carry it: around the body (the layout's arc lengths and the offset by
+        # delta) or down it (rows placed by height); docs/analysis.md, Mapping error.
+        for family, values in families.items():
+            out[f"spring_strain_rms_{stage}_{family}"] = float(np.sqrt(np.mean(values**2))) if len(values) else math.nan
+            out[f"spring_strain_mean_{stage}_{family}"] = float(np.mean(values)) if len(values) else math.nan
     return out
 
 
@@ -279,7 +292,7 @@ def restart_error(run):
     horizon: `restart_error_start` (from the common start), `restart_error_events` (mean over
     the branches after the reference's events), `restart_error_after_<kind>` (over the events of
     one kind), `restart_error_events_rel` (mean of error / the reference's own motion over the
-    horizon); for every later horizon `restart_error_events_<ms>ms`; `restart_error_failed`, the
+    horizon), `restart_motion_events` (the mean of that motion); for every later horizon `restart_error_events_<ms>ms`; `restart_error_failed`, the
     branches that diverged or failed (left out of the means). Empty without the file."""
     path = run / "restart_error.csv"
     if not path.exists():
@@ -300,6 +313,7 @@ def restart_error(run):
         out["restart_error_events"] = mean
         out["restart_error_events_rel"] = (float((events["error_rms"] / events["reference_motion_rms"]).mean())
                                            if len(events) else math.nan)
+        out["restart_motion_events"] = float(events["reference_motion_rms"].mean()) if len(events) else math.nan
         for kind in EVENT_KINDS:
             of_kind = events[events["events"] == kind]["error_rms"]
             out[f"restart_error_after_{kind}"] = float(of_kind.mean()) if len(of_kind) else math.nan

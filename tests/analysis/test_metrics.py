@@ -350,6 +350,24 @@ class MappingErrorTest(RunFolderTest):
         self.assertClose(out["spring_strain_max_final"], np.max(np.abs(strains)))
         self.assertNotIn("mapping_gap_mean_mapped", out, "no trace.csv")
 
+    def test_strain_by_spring_family(self):
+        # Stretched 2 % along the rows (x) and squeezed 1 % along the columns (z): each family
+        # has one strain, the diagonals sqrt(1.02^2 + 0.99^2) / sqrt(2) - 1.
+        run = self.make_run()
+        runfolder.write_summary(run, [{"t": 0.3, "type": "map"}], self.scene())
+        x = self.grid(1.0, self.delta)
+        x[:, 0] *= 1.02
+        x[:, 2] *= 0.99
+        objects = x.copy()
+        objects[:, 1] = 0.0
+        self.write_dummy(run, objects)
+        runfolder.write_state(run, x, cols=self.cols)
+        out = metrics.mapping_error(run, runfiles.read_json(run / "summary.json"))
+        shear = math.hypot(1.02, 0.99) / math.sqrt(2) - 1
+        for family, expected in (("along_rows", 0.02), ("along_cols", -0.01), ("shear", shear)):
+            self.assertClose(out[f"spring_strain_mean_final_{family}"], expected, rel=1e-9)
+            self.assertClose(out[f"spring_strain_rms_final_{family}"], abs(expected), rel=1e-9)
+
     def test_no_map_event(self):
         run = self.make_run()
         runfolder.write_summary(run, [{"t": 0.3, "type": "hold"}], self.scene())

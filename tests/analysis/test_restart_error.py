@@ -30,6 +30,7 @@ class RestartErrorTest(RunFolderTest):
         self.assertAlmostEqual(out["restart_error_after_release"], 0.002)
         self.assertTrue(math.isnan(out["restart_error_after_attach"]))
         self.assertAlmostEqual(out["restart_error_events_rel"], (0.004 / 0.02 + 0.002 / 0.04) / 2)
+        self.assertAlmostEqual(out["restart_motion_events"], (0.02 + 0.04) / 2)
         self.assertAlmostEqual(out["restart_error_events_100ms"], (0.01 + 0.006) / 2)
         self.assertEqual(out["restart_error_failed"], 2)
 
