@@ -41,7 +41,7 @@ void ImplicitEuler::converged_step(double t_next) {
     throw IntegratorFailure("CONV_FAILURE",
                             "implicit-euler: backward Euler did not converge in " +
                                 std::to_string(result.iterations) + " Newton iterations at t = " +
-                                std::to_string(t_next));
+                                std::to_string(t_next) + ": stopped by " + result.stopped_by);
   }
   m_y = m_increment;
 }

@@ -112,9 +112,15 @@ StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef
       result.converged = true;
       return result;
     }
-    if (slope == 0.0) return result;  // zero gradient with a step above tolerance: no progress
+    if (slope == 0.0) {  // zero gradient with a step above tolerance: no progress
+      result.stopped_by = "a zero gradient with the update above tolerance";
+      return result;
+    }
     const long backtracks = result.backtracks;
-    if (!line_search(z, slope, result)) return result;
+    if (!line_search(z, slope, result)) {
+      result.stopped_by = "the line search (no decrease of the incremental potential in 30 halvings)";
+      return result;
+    }
     local = result.backtracks == backtracks;
   }
   return result;

@@ -23,6 +23,9 @@ namespace drape {
 /// What one stage solve did.
 struct StageSolve {
   bool converged = false;
+  /// Why an unconverged solve stopped: the iteration limit, a line search that found no
+  /// decrease in 30 halvings, or a zero gradient with a step still above tolerance.
+  const char* stopped_by = "the iteration limit";
   int iterations = 0;   ///< Newton iterations (directions computed)
   long backtracks = 0;  ///< step halvings of the line search
   long rhs_evals = 0;   ///< force evaluations (gradients and the fixed rows)

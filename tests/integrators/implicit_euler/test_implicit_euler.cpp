@@ -111,5 +111,26 @@ TEST(ImplicitEuler, ConvergedSolveIsBackwardEuler) {
   EXPECT_GT(method.counters().newton_iters, 10);
 }
 
+// A converged step that runs out of Newton iterations says so, and says what stopped it.
+TEST(ImplicitEuler, AnUnconvergedStepNamesWhatStoppedIt) {
+  auto s = testing::swinging_sheet(100.0);
+  IntegratorOptions o = euler_options(1.0 / 30.0, "pcg-multigrid");
+  o.solve = "converged";
+  o.max_newton_iters = 1;
+  ImplicitEuler method(*s, o);
+  method.reset(0.0, s->initial_state(0.0));
+  try {
+    method.step(1.0);
+    ADD_FAILURE() << "one Newton iteration converged a 1/30 s step at 100x the stiffness";
+  } catch (const IntegratorFailure& failure) {
+    EXPECT_EQ(failure.flag(), "CONV_FAILURE");
+    EXPECT_NE(std::string(failure.what()).find("did not converge in 1 Newton iterations"),
+              std::string::npos) << failure.what();
+    EXPECT_NE(std::string(failure.what()).find("stopped by the iteration limit"), std::string::npos)
+        << failure.what();
+  }
+  EXPECT_EQ(method.counters().convergence_failures, 1);
+}
+
 }  // namespace
 }  // namespace drape
