@@ -41,33 +41,50 @@ def number(value):
         return math.nan
 
 
+# The parameter that numbers an ensemble's repeats: never a series, its runs are one point.
+REPEAT_PARAMETER = "perturbation.seed"
+
+
+def with_intervals(points):
+    """(x, mean y, 95 % half-width) for each x of (x, y) points, sorted by x: the repeats of an
+    ensemble as one point (half-width 0 for a single run)."""
+    by_x = {}
+    for x, y in points:
+        by_x.setdefault(x, []).append(y)
+    out = []
+    for x in sorted(by_x):
+        _, mean, _, half = stats.interval(by_x[x])
+        out.append((x, mean, 0.0 if math.isnan(half) else half))
+    return out
+
+
 def series(rows, parameters, x_key, y_key, exclude=()):
-    """Points (x, y) grouped by label, sorted by x, finite values only. x_key may be a function
-    of the row."""
+    """Points (x, mean y, 95 % half-width over the repeats) grouped by label, sorted by x, finite
+    values only. x_key may be a function of the row."""
     groups = {}
     scenes = several_scenes(rows)
     for row in rows:
         x = number(x_key(row) if callable(x_key) else row.get(x_key))
         y = number(row.get(y_key))
         if math.isfinite(x) and math.isfinite(y) and not row.get("is_reference"):
-            key = label(row, parameters, ((x_key,) if isinstance(x_key, str) else ()) + tuple(exclude),
-                        with_scene=scenes)
+            key = label(row, parameters, ((x_key,) if isinstance(x_key, str) else ()) + tuple(exclude)
+                        + (REPEAT_PARAMETER,), with_scene=scenes)
             groups.setdefault(key, []).append((x, y))
-    return {name: sorted(points) for name, points in groups.items()}
+    return {name: with_intervals(points) for name, points in groups.items()}
 
 
 def line_plot(out_dir, stem, rows, parameters, x_key, y_key, xlabel, ylabel, logx=True, logy=True,
               exclude=()):
-    """One line per series of y against x."""
+    """One line per series of y against x, bars the 95 % interval over repeated runs."""
     groups = series(rows, parameters, x_key, y_key, exclude)
     if not groups:
         return None
     fig, ax = plt.subplots(figsize=(6, 4))
     for k, (name, points) in enumerate(groups.items()):
-        xs, ys = zip(*points)
-        ax.plot(xs, ys, label=name, **style.variant_style(k))
+        xs, ys, half = zip(*points)
+        ax.errorbar(xs, ys, yerr=half, label=name, capsize=3, **style.variant_style(k))
     ax.set_xscale("log" if logx else "linear")
-    ax.set_yscale("log" if logy and all(y > 0 for p in groups.values() for _, y in p) else "linear")
+    ax.set_yscale("log" if logy and all(y > 0 for p in groups.values() for _, y, _ in p) else "linear")
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.grid(True, which="both", alpha=0.3)
@@ -272,13 +289,14 @@ def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",
         panel = scene_name(row) + (f", {row['collision.model']}" if "collision.model" in parameters else "")
         groups = panels.setdefault(panel, {})
         y, x = number(row.get(y_key)), number(row.get("integrator.dt"))
-        if row.get("is_reference"):
-            references[panel] = (method_label(row), y)
+        if row.get("is_reference"):  # its repeats: one line at their mean
+            references.setdefault(panel, (method_label(row), []))[1].append(y)
             continue
         if not (math.isfinite(x) and math.isfinite(y)):
             continue
         rest = [f"{key.split('.')[-1]}={row[key]}" for key in parameters if key in row
-                and key not in ("integrator.dt", "collision.model") + INTEGRATOR_DETAIL + NEVER_IN_LABEL]
+                and key not in ("integrator.dt", "collision.model", REPEAT_PARAMETER) + INTEGRATOR_DETAIL
+                + NEVER_IN_LABEL]
         name = ", ".join([str(row.get("integrator", "?"))] + rest)
         groups.setdefault(name, []).append((x, y))
         colors[name] = (integrator_color(row), style.INTEGRATOR_MARKERS.get(row.get("integrator"), "o"))
@@ -296,13 +314,15 @@ def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",
         # Integrator by colour; the other swept values by marker and line style.
         variants = sorted({name.split(", ", 1)[-1] if ", " in name else "" for name in groups})
         for name, points in sorted(groups.items()):
-            xs, ys = zip(*sorted(points))
+            xs, ys, half = zip(*with_intervals(points))
             variant = variants.index(name.split(", ", 1)[-1] if ", " in name else "")
             color, marker = colors[name]
-            ax.plot(xs, ys, label=name, color=color, mfc="none", mew=1.2,
-                    **{**style.variant_style(variant), "marker": marker})
-        if math.isfinite(references.get(panel, ("", math.nan))[1]):
-            ax.axhline(references[panel][1], c="k", lw=1.0, ls="--", label=f"{references[panel][0]} (reference)")
+            ax.errorbar(xs, ys, yerr=half, label=name, color=color, mfc="none", mew=1.2, capsize=3,
+                        **{**style.variant_style(variant), "marker": marker})
+        reference_name, reference_ys = references.get(panel, ("", []))
+        reference_y = stats.interval(reference_ys)[1]
+        if math.isfinite(reference_y):
+            ax.axhline(reference_y, c="k", lw=1.0, ls="--", label=f"{reference_name} (reference)")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("dt [s]")
