@@ -167,6 +167,7 @@ Perturbation read_perturbation(JsonReader in) {
   if (distribution != "uniform" && distribution != "gaussian")
     throw in.error("distribution", "expected \"uniform\" or \"gaussian\"");
   p.gaussian = distribution == "gaussian";
+  p.after_map = in.boolean("after_map", false);
   in.finish();
   return p;
 }

@@ -30,6 +30,9 @@ struct Perturbation {
   double position = 0.0;   ///< amplitude as a fraction of cloth.spacing; 0: none
   std::uint64_t seed = 0;  ///< the same seed gives the same perturbation
   bool gaussian = false;   ///< false: uniform in [-a, a] per coordinate; true: normal, std a
+  /// Also perturb right after each map, which lays every particle out anew and so erases the
+  /// initial perturbation (the k-th map draws from stream k of the seed).
+  bool after_map = false;
 };
 
 /// The restart error of the integrator against a reference (docs/analysis.md, "Restart

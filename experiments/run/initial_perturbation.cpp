@@ -29,8 +29,20 @@ class SplitMix64 {
 
 void perturb_initial_positions(const Perturbation& p, double spacing,
                                const ConstraintSet& constraints, Eigen::VectorXd& y) {
+  perturb_positions(p, 0, spacing, constraints, y);
+}
+
+void perturb_positions(const Perturbation& p, std::uint64_t stream, double spacing,
+                       const ConstraintSet& constraints, Eigen::VectorXd& y) {
   if (p.position <= 0.0) return;
-  SplitMix64 rng(p.seed);
+  // Stream 0 is the seed itself (the initial perturbation of every earlier ensemble); stream k
+  // starts from SplitMix64's k-th output of the seed, a sequence no other stream shares.
+  std::uint64_t state = p.seed;
+  if (stream > 0) {
+    SplitMix64 streams(p.seed ^ 0x5851f42d4c957f2dULL);
+    for (std::uint64_t k = 0; k < stream; ++k) state = streams.next();
+  }
+  SplitMix64 rng(state);
   const double a = p.position * spacing;
   const auto n = static_cast<int>(y.size() / 6);
   for (int i = 0; i < n; ++i) {

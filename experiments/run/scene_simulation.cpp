@@ -29,6 +29,8 @@ SceneSimulation::SceneSimulation(const Scene& scene, const std::string& integrat
   settings.max_steps = m_options.max_steps;
   settings.adaptive = m_options.adaptive;
   settings.dt = m_options.dt;
+  settings.perturbation = scene.perturbation;
+  settings.spacing = scene.cloth.spacing;
   Eigen::VectorXd initial = m_system->initial_state(0.0);
   perturb_initial_positions(scene.perturbation, scene.cloth.spacing, m_system->constraints(),
                             initial);

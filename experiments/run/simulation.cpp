@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "experiments/run/initial_perturbation.hpp"
+
 namespace drape {
 
 namespace {
@@ -25,6 +27,7 @@ Simulation::Simulation(ClothSystem& system, Manipulator& manipulator, Integrator
   const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(system.num_particles());
   system.project(0.0, y0.head(n3), y0.tail(n3));
   if (auto changed = manipulator.update(0.0, y0)) y0 = std::move(*changed);
+  perturb_new_maps(y0);
   integrator.reset(0.0, y0);
   m_divergence.account_for(system, energy_of(system, y0));
 }
@@ -60,6 +63,7 @@ const RunStatus& Simulation::run() {
 void Simulation::branch_from(const Simulation& other) {
   m_system.constraints() = other.m_system.constraints();
   m_manipulator.copy_state_from(other.m_manipulator);
+  m_maps = other.m_maps;  // the maps it perturbed are in the copied state
   m_t = m_t0 = other.time();
   const Eigen::VectorXd& y = other.state();
   if (m_keep_step_ends) m_y0 = m_y1 = y;
@@ -112,12 +116,22 @@ void Simulation::take_step() {
     return;
   }
   if (m_keep_step_ends) m_y1 = m_integrator.state();
-  const auto changed = m_manipulator.update(m_t, m_integrator.state());
+  auto changed = m_manipulator.update(m_t, m_integrator.state());
   if (changed) {
+    perturb_new_maps(*changed);
     m_integrator.reset(m_t, *changed);
     m_divergence.account_for(m_system, energy_of(m_system, *changed));
   }
   notify([&](SimulationObserver& o) { o.on_step(*this, changed.has_value()); });
+}
+
+void Simulation::perturb_new_maps(Eigen::VectorXd& y) {
+  if (!m_settings.perturbation.after_map) return;
+  long maps = 0;
+  for (const ManipulationEvent& e : m_manipulator.events()) maps += e.type == "map";
+  while (m_maps < maps)
+    perturb_positions(m_settings.perturbation, static_cast<std::uint64_t>(++m_maps),
+                      m_settings.spacing, m_system.constraints(), y);
 }
 
 template <class Call>

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/manipulations/manipulations.hpp"
+#include "core/scene/scene.hpp"
 #include "experiments/run/divergence_check.hpp"
 #include "integrators/interface/integrator.hpp"
 
@@ -43,6 +44,10 @@ struct SimulationSettings {
   /// a step by round-off only, and it depends on nothing a run writes: output intervals never
   /// change a step (docs/outputs.md, "Steps and output times").
   double time_grid = 0.01;
+  /// With `after_map`, the free particles are perturbed right after each map (an ensemble's
+  /// repeats would be identical after it otherwise; docs/experiments.md, "Ensembles").
+  Perturbation perturbation;
+  double spacing = 0.0;  ///< cloth.spacing, the perturbation's unit [m]
 };
 
 /// How a run ended: `running`, `ok`, `diverged` (non-finite or runaway state) or `failed` (a
@@ -103,6 +108,8 @@ class Simulation {
   double next_landing_time() const;
   void take_step();
   void end(std::string status, std::string reason);
+  /// Applies perturbation.after_map for every map the manipulator made since the last call.
+  void perturb_new_maps(Eigen::VectorXd& y);
   /// Calls every observer, timing them (wall_seconds() leaves them out).
   template <class Call>
   void notify(Call&& call);
@@ -124,6 +131,7 @@ class Simulation {
   double m_max_step = 0.0;
   double m_wall_seconds = 0.0;
   double m_observer_seconds = 0.0;
+  long m_maps = 0;  ///< maps perturbed so far
 };
 
 }  // namespace drape

@@ -13,15 +13,45 @@ ImplicitEuler::ImplicitEuler(ClothSystem& system, const IntegratorOptions& optio
 
 double ImplicitEuler::step(double t_stop) {
   const double t_next = fixed_step_end(m_dt, m_t, t_stop);
-  if (m_line_search)
-    converged_step(t_next);
-  else
+  if (m_line_search) {
+    cover_converged(m_t, t_next, m_options.max_step_halvings);
+    // cover_converged counted every solve (a halved interval's sub-steps are steps, as in
+    // ARKODE's counters); accept_fixed_step counts the interval once more.
+    --m_counters.steps;
+    --m_counters.attempts;
+  } else {
     linearised_step(t_next);
-  m_system.project(t_next, positions(), velocities());
+    m_system.project(t_next, positions(), velocities());
+  }
   return accept_fixed_step(t_next);
 }
 
-void ImplicitEuler::converged_step(double t_next) {
+// The interval as one backward-Euler step or, when its stage solve fails, as two halves, each
+// halved again up to max_step_halvings levels: the rule of ARKODE's fixed steps
+// (arkode_stepper.cpp, cover_fixed), so that a converged implicit-euler and a one-stage DIRK
+// table meet a hard step alike (docs/integrators.md, "Halving a failed fixed step").
+void ImplicitEuler::cover_converged(double t_start, double t_end, int halvings_left) {
+  ++m_counters.attempts;
+  try {
+    converged_step(t_start, t_end);
+    m_system.project(t_end, positions(), velocities());
+    ++m_counters.steps;
+    return;
+  } catch (const IntegratorFailure& failure) {
+    if (m_options.max_step_halvings == 0) throw;
+    if (halvings_left == 0)
+      throw IntegratorFailure(failure.flag(),
+                              std::string(failure.what()) + " (the step was halved " +
+                                  std::to_string(m_options.max_step_halvings) + " times, to " +
+                                  std::to_string(t_end - t_start) + " s)");
+  }
+  ++m_counters.step_halvings;  // m_y is still the interval's start: a failed solve keeps it
+  const double middle = t_start + 0.5 * (t_end - t_start);
+  cover_converged(t_start, middle, halvings_left - 1);
+  cover_converged(middle, t_end, halvings_left - 1);
+}
+
+void ImplicitEuler::converged_step(double t_start, double t_next) {
   // ARKODE's error weights and its default Newton tolerance (nlscoef 0.1), so that a converged
   // implicit-euler and a one-stage ARKODE table stop at the same accuracy.
   constexpr double tolerance = 0.1;
@@ -29,7 +59,7 @@ void ImplicitEuler::converged_step(double t_next) {
   m_increment = m_y;  // the stage's guess: the step's start
   const long cg_before = m_solver.iterations();
   const StageSolve result =
-      m_line_search->solve(t_next, t_next - m_t, m_y, m_increment,
+      m_line_search->solve(t_next, t_next - t_start, m_y, m_increment,
                            StageTolerance{m_weights, tolerance, max_newton_iters_of(m_options)});
   m_counters.linear_iters += m_solver.iterations() - cg_before;
   m_counters.newton_iters += result.iterations;

@@ -31,8 +31,11 @@ class ImplicitEuler final : public Integrator {
  private:
   /// The linearised step (Baraff and Witkin) to t_next.
   void linearised_step(double t_next);
-  /// Backward Euler solved to convergence; throws IntegratorFailure when it is not.
-  void converged_step(double t_next);
+  /// Backward Euler from t_start to t_next solved to convergence; throws IntegratorFailure
+  /// when it is not (the state is then unchanged).
+  void converged_step(double t_start, double t_next);
+  /// [t_start, t_end] by converged steps, halved where a solve fails (max_step_halvings).
+  void cover_converged(double t_start, double t_end, int halvings_left);
 
   IntegratorOptions m_options;
   double m_dt;

@@ -30,8 +30,9 @@ void reject_unused_keys(const JsonReader& in, const IntegratorOptions& o) {
        "arkode-dirk, arkode-imex and implicit-euler with solve = converged"},
       {"nonlinear_solver", newton, "arkode-dirk and arkode-imex"},
       {"solve", o.name == "implicit-euler", "implicit-euler"},
-      {"max_step_halvings", newton && !o.adaptive,
-       "fixed-step arkode-dirk and arkode-imex (adaptive runs shrink a failed step themselves)"},
+      {"max_step_halvings", (newton && !o.adaptive) || converged_euler,
+       "fixed-step arkode-dirk and arkode-imex (adaptive runs shrink a failed step themselves) "
+       "and implicit-euler with solve = converged"},
       {"linear_tolerance", linear, "implicit-euler, arkode-dirk and arkode-imex"},
       {"max_linear_iters", linear, "implicit-euler, arkode-dirk and arkode-imex"},
   };

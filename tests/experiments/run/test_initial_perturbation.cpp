@@ -1,7 +1,10 @@
-// The seeded initial perturbation of ensembles (docs/scene.md `perturbation`).
+// The seeded initial perturbation of ensembles (docs/scene.md `perturbation`), and its
+// repetition after a map (perturbation.after_map), which otherwise erases it.
 #include <gtest/gtest.h>
 
+#include "core/scene/scene.hpp"
 #include "experiments/run/initial_perturbation.hpp"
+#include "experiments/run/scene_simulation.hpp"
 
 namespace drape {
 namespace {
@@ -47,6 +50,48 @@ TEST(InitialPerturbation, UniformWithinTheAmplitudeOnFreePositionsOnly) {
   const Eigen::VectorXd all = perturbed(p, ConstraintSet(50)) - y0;
   EXPECT_EQ(d.head(12), all.head(12));
   EXPECT_EQ(d.segment(15, 135), all.segment(15, 135));
+}
+
+TEST(InitialPerturbation, EachStreamItsOwnAndStreamZeroTheInitialOne) {
+  Perturbation p;
+  p.position = 1e-3;
+  p.seed = 7;
+  const ConstraintSet free(50);
+  const Eigen::VectorXd y0 = Eigen::VectorXd::LinSpaced(300, 0.0, 1.0);
+  Eigen::VectorXd s0 = y0, s1 = y0, s2 = y0;
+  perturb_positions(p, 0, 0.02, free, s0);
+  perturb_positions(p, 1, 0.02, free, s1);
+  perturb_positions(p, 2, 0.02, free, s2);
+  EXPECT_EQ(s0, perturbed(p, free));
+  EXPECT_GT((s1 - s0).norm(), 1e-6);
+  EXPECT_GT((s2 - s1).norm(), 1e-6);
+  EXPECT_LE((s1 - y0).cwiseAbs().maxCoeff(), 1e-3 * 0.02);
+}
+
+// The state 10 ms after a map at t = 0.01 s of a small cloth on the dress form (leap-frog).
+Eigen::VectorXd after_map(int seed, bool again) {
+  auto source = nlohmann::json::parse(R"({
+    "cloth": {"rows": 6, "cols": 6, "spacing": 0.02, "origin": [0.0, 1.25, 0.30],
+              "particle_mass": 6e-5, "k_structural": 50, "damping_spring": 0.05},
+    "collision": {"threshold": 0.02, "stiffness": 20},
+    "integrator": {"name": "leapfrog", "dt": 2e-4},
+    "input": {"events": [{"t": 0.01, "keys": ["m"]}]},
+    "manipulation": {"map_top": 1.25}, "duration": 0.02})");
+  source["perturbation"] = {{"position", 1e-3}, {"seed", seed}, {"after_map", again}};
+  SceneSimulation run(parse_scene(source, "test.json", "."));
+  EXPECT_EQ(run.simulation().run().status, "ok");
+  EXPECT_EQ(run.simulation().manipulator().events().at(0).type, "map");
+  return run.simulation().state();
+}
+
+TEST(InitialPerturbation, AfterAMapOnlyAfterMapKeepsTheRepeatsApart) {
+  // The map lays every particle out anew: without after_map two seeds end bit for bit alike.
+  EXPECT_EQ(after_map(1, false), after_map(2, false));
+  const Eigen::VectorXd one = after_map(1, true);
+  EXPECT_EQ(one, after_map(1, true)) << "reproducible";
+  const double apart = (one - after_map(2, true)).head(108).cwiseAbs().maxCoeff();
+  EXPECT_GT(apart, 1e-7);
+  EXPECT_LT(apart, 1e-3) << "a perturbation, not another run";
 }
 
 }  // namespace

@@ -117,6 +117,7 @@ TEST(ImplicitEuler, AnUnconvergedStepNamesWhatStoppedIt) {
   IntegratorOptions o = euler_options(1.0 / 30.0, "pcg-multigrid");
   o.solve = "converged";
   o.max_newton_iters = 1;
+  o.max_step_halvings = 0;
   ImplicitEuler method(*s, o);
   method.reset(0.0, s->initial_state(0.0));
   try {
@@ -130,6 +131,41 @@ TEST(ImplicitEuler, AnUnconvergedStepNamesWhatStoppedIt) {
         << failure.what();
   }
   EXPECT_EQ(method.counters().convergence_failures, 1);
+}
+
+// A converged step whose solve fails is taken again as two halves (max_step_halvings), as
+// ARKODE's fixed steps are: with the Newton limit at which the 1/30 s step of the stiff sheet is
+// halved exactly once, the result is two converged 1/60 s steps, and the sub-steps are counted.
+TEST(ImplicitEuler, AFailedConvergedStepIsTakenAsTwoHalves) {
+  auto s = testing::swinging_sheet(100.0);
+  IntegratorOptions o = euler_options(1.0 / 30.0, "pcg-multigrid");
+  o.solve = "converged";
+  o.rtol = 1e-8;
+  o.atol = 1e-10;
+  const Eigen::VectorXd y0 = s->initial_state(0.0);
+  IntegratorOptions halves = o;
+  halves.dt = 1.0 / 60.0;
+  halves.max_newton_iters = 200;
+  const Eigen::VectorXd two_halves = run(*s, halves, y0, 1.0 / 30.0);
+  bool found = false;
+  for (int limit = 1; limit <= 60 && !found; ++limit) {
+    o.max_newton_iters = limit;
+    ImplicitEuler method(*s, o);
+    method.reset(0.0, y0);
+    try {
+      EXPECT_DOUBLE_EQ(method.step(1.0), 1.0 / 30.0);
+    } catch (const IntegratorFailure&) {
+      continue;  // a half step fails too at this limit
+    }
+    if (method.counters().step_halvings != 1) continue;
+    found = true;
+    EXPECT_EQ(method.counters().steps, 2) << "the two halves";
+    EXPECT_EQ(method.counters().attempts, 3) << "the failed whole and the two halves";
+    const Eigen::VectorXd diff = method.state() - two_halves;
+    EXPECT_LT(diff.lpNorm<Eigen::Infinity>(), 1e-6 * two_halves.lpNorm<Eigen::Infinity>())
+        << "Newton limit " << limit;
+  }
+  EXPECT_TRUE(found) << "no Newton limit halved the step exactly once";
 }
 
 }  // namespace
