@@ -297,8 +297,7 @@ def restart_error(run):
     path = run / "restart_error.csv"
     if not path.exists():
         return {}
-    measured = ("error_rms", "error_max", "reference_motion_rms")
-    rows = runfiles.read_csv(path, ("t", "horizon") + measured, ("events", "status"), measured)
+    rows = runfiles.read_restart_error(path)
     out = {"restart_error_failed": int((rows["status"] != "ok").sum())}
     horizons = sorted(rows["horizon"].unique())
     for k, horizon in enumerate(horizons):

@@ -250,12 +250,14 @@ def restart_error_vs_horizon(directory, out_dir, rows, parameters):
         path = runfiles.run_dir(directory, row) / "restart_error.csv"
         if row.get("is_reference") or not path.exists():
             continue
-        branches = runfiles.read_csv(path, ("horizon", "error_rms"), ("events", "status"), ("error_rms",))
+        branches = runfiles.read_restart_error(path)
         after = branches[(branches["events"] != "start") & (branches["status"] == "ok")]
         rest = label(row, parameters, ("integrator.dt", "perturbation.seed") + INTEGRATOR_DETAIL)
         name = method_label(row) + (f", {rest}" if rest != scene_name(row) else "")
         colors[name] = integrator_color(row)
         per_run = after.groupby("horizon")["error_rms"].mean()
+        if per_run.empty:  # every branch after an event failed, or the run had no event
+            continue
         panel = panels.setdefault(scene_name(row), {}).setdefault(name, {})
         for horizon, value in per_run.items():
             panel.setdefault(horizon, []).append(value)

@@ -52,6 +52,13 @@ def read_csv(path, columns=(), text_columns=(), nan_columns=()):
     return frame
 
 
+def read_restart_error(path):
+    """A run's restart_error.csv (docs/outputs.md): the measured columns are nan where a branch
+    failed or the run ended before its horizon."""
+    measured = ("error_rms", "error_max", "reference_motion_rms")
+    return read_csv(path, ("t", "horizon") + measured, ("events", "status"), measured)
+
+
 def read_table(path, columns=()):
     """A numeric CSV file (energy.csv, state.csv, dummy.csv) as a DataFrame of floats."""
     return read_csv(path, columns)

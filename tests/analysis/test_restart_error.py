@@ -3,7 +3,7 @@ known values: means over the event branches, per kind, relative to the reference
 horizons, and failed branches counted and left out."""
 import math
 
-from drapeanalysis import metrics
+from drapeanalysis import metrics, plots
 from test_metrics import RunFolderTest
 
 HEADER = "t,events,horizon,status,error_rms,error_max,reference_motion_rms\n"
@@ -40,3 +40,16 @@ class RestartErrorTest(RunFolderTest):
         (run / "restart_error.csv").write_text(HEADER + "0,start,0.0333333,ok,abc,0.1,0.1\n")
         with self.assertRaisesRegex(ValueError, r"restart_error.csv: row 1, column error_rms"):
             metrics.restart_error(run)
+
+    def test_figure_skips_a_run_whose_event_branches_all_failed(self):
+        good, failed = self.make_run("good"), self.make_run("failed")
+        (good / "restart_error.csv").write_text(HEADER + "\n".join(ROWS) + "\n")
+        (failed / "restart_error.csv").write_text(HEADER + ROWS[0] + "\n" + ROWS[-1] + "\n")
+        rows = [self.row("good", integrator="leapfrog", dt=1e-4, scene="s.json"),
+                self.row("failed", integrator="implicit-euler", dt=0.01, scene="s.json")]
+        out = self.directory / "report"
+        out.mkdir()
+        self.assertEqual(plots.restart_error_vs_horizon(self.directory, out, rows, []),
+                         "restart_error_vs_horizon")
+        self.assertTrue((out / "restart_error_vs_horizon.png").exists())
+        self.assertIsNone(plots.restart_error_vs_horizon(self.directory, out, rows[1:], []))
