@@ -26,6 +26,7 @@ except ImportError:  # drapelab report checks for matplotlib and numpy only
     sys.exit("report.py needs pandas (Debian: apt install python3-pandas; install_dependencies.sh installs it)")
 
 from drapeanalysis import metrics, plots, runfiles, stats, viewer_pages  # noqa: E402
+from drapeanalysis.figure_catalogue import CAPTIONS, FIGURE_METRIC  # noqa: E402
 
 # Columns of the report's table besides the parameters; every column is in metrics.csv.
 TABLE_COLUMNS = (
@@ -234,44 +235,6 @@ def html_table(rows, parameters, pages=None):
                          else f"<td>{html.escape(notes.get(row['id'], ''))}</td>")
         body.append("<tr>" + "".join(cells) + "</tr>")
     return f"<div class='wide'><table><tr>{head}</tr>{''.join(body)}</table></div>"
-
-
-CAPTIONS = {
-    "energy_vs_time": "Relative energy error against time, one panel per integrator.",
-    "work_precision": "RMS error against the reference run (one Kinect frame after the events, restarted "
-                      "from the reference's state, where the runs measured the restart error; else of "
-                      "the final positions), against right-hand-side evaluations and wall time.",
-    "restart_error_vs_horizon": "Restart error against the horizon: each method restarted from the "
-                                "reference's state after each of its events, RMS distance to the "
-                                "reference a horizon later (mean over the runs of each run's mean "
-                                "over its events; bars: 95 % interval over the runs).",
-    "energy_by_scene": "Total energy E(t) - E(0) of every method (reference run dashed black), one "
-                       "panel per scene; dotted lines: manipulations. Driven, damped scenes do not "
-                       "conserve energy: the methods are compared with each other.",
-    "attach_error_vs_iterations": "Attach error |x - (p_o + delta n_o)| against "
-                                  "manipulation.attach_iterations (paper Figure 5).",
-    "attach_error_vs_time": "The same attach error against the simulated time the attached "
-                            "particle was left to settle (attach_iterations x dt).",
-    "vibration_vs_dt": "Vibration: RMS motion of the free cloth particles above the run's cutoff "
-                       "(between its swing and stretch frequencies, docs/analysis.md) over the last "
-                       "0.5 s of the run, against the step size; one panel per scene (and collision "
-                       "model), one line per integrator and the other swept values; dashed black: "
-                       "the reference run.",
-    "vibration_events_vs_dt": "The same, largest over the windows after each manipulation.",
-    "contact_switch_vs_dt": "Changes of a particle's nearest object particle in contact per free "
-                            "particle and second, last 0.5 s, against the step size.",
-    "stable_dt": "Largest stable step found by bisection.",
-}
-
-
-# The experiment's `metrics` (docs/experiments.md) each figure belongs to.
-FIGURE_METRIC = {
-    "energy_vs_time": "energy_drift", "energy_by_scene": "energy_drift",
-    "work_precision": "work_precision", "attach_error_vs_iterations": "attach_error",
-    "attach_error_vs_time": "attach_error", "vibration_vs_dt": "vibration",
-    "vibration_events_vs_dt": "vibration", "contact_switch_vs_dt": "vibration",
-    "stable_dt": "stable_dt", "restart_error_vs_horizon": "restart_error",
-}
 
 
 def make_figures(directory, out_dir, rows, parameters, shown=()):

@@ -235,7 +235,7 @@ def work_precision(out_dir, rows, parameters):
             ax.set_title(name)
             ax.set_xlabel("right-hand-side evaluations" if key == "rhs_evals" else "wall time [s]")
             ax.grid(True, which="both", alpha=0.3)
-        axes[r, 0].set_ylabel("RMS error 1/30 s after the events,\nrestarted from the reference [m]"
+        axes[r, 0].set_ylabel("restart error after the events,\nfirst horizon [m]"
                               if error_key == "restart_error_events" else "RMS final position error [m]")
     style.legend_beside(axes[0, 1])
     return style.save(fig, out_dir, "work_precision")
