@@ -74,6 +74,10 @@ void check_hand(Hand hand, const std::optional<HandSample>& sample, const std::s
 
 LiveSession::LiveSession(Scene scene, std::filesystem::path out_dir, bool live_hands)
     : m_scene(with_input(std::move(scene))), m_out_dir(std::move(out_dir)) {
+  // A live session has no reference to branch and is watched, not measured (docs/live.md).
+  if (m_scene.restart_error.enabled())
+    throw InputError(m_scene.file, "restart_error",
+                     "is measured by drapelab run and experiments, not in a live session");
   m_run = std::make_unique<SceneSimulation>(m_scene);
   HandInput& input = *m_run->input();
   if (live_hands || !has_hand_samples(input.track)) {

@@ -61,6 +61,11 @@ def main():
         code = subprocess.run([drapelab, "live", str(scene), "--port",
                                str(busy.getsockname()[1]), "--out", str(work / "busy")]).returncode
     assert code == 2, code
+    # a measurement that needs a reference is refused, naming its key (exit 2)
+    refused = subprocess.run([drapelab, "live", str(scene), "--port", str(port), "--out", str(work / "restart"),
+                              "--set", 'restart_error={"reference":{"name":"leapfrog","dt":1e-5},"horizons":[0.1]}'],
+                             capture_output=True, text=True)
+    assert refused.returncode == 2 and "restart_error" in refused.stderr, (refused.returncode, refused.stderr)
     print(f"live check: {len(frames)} frames, events {live_events}")
 
 
