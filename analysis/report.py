@@ -53,7 +53,7 @@ SUMMARY_METRICS = (
     ("vibration_rms_final", "Vibration over the last 0.5 s", "mm", 1e3),
     ("slow_motion_rms_final", "Slow motion over the last 0.5 s", "mm", 1e3),
     ("restart_error_start", "Restart error at the first horizon after the start", "mm", 1e3),
-    ("restart_error_events", "Restart error at the first horizon after the events (from the reference's state)", "mm", 1e3),
+    ("restart_error_events", "Restart error at the first horizon after the events (the reference restarted from the run's state)", "mm", 1e3),
     ("restart_error_after_hold", "Restart error at the first horizon after a hold", "mm", 1e3),
     ("restart_error_after_release", "Restart error at the first horizon after a release", "mm", 1e3),
     ("restart_error_after_attach", "Restart error at the first horizon after an attach", "mm", 1e3),
