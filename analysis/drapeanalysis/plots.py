@@ -245,7 +245,8 @@ def restart_error_vs_horizon(directory, out_dir, rows, parameters):
     """Restart error after the events against the horizon (docs/analysis.md, "Restart error"),
     one panel per scene, one line per method: the mean over its runs of each run's mean over its
     event branches, bars the 95 % interval over the runs."""
-    panels, colors = {}, {}
+    panels, styles = {}, {}
+    ranks = step_ranks(rows)
     for row in rows:
         path = runfiles.run_dir(directory, row) / "restart_error.csv"
         if row.get("is_reference") or not path.exists():
@@ -254,7 +255,8 @@ def restart_error_vs_horizon(directory, out_dir, rows, parameters):
         after = branches[(branches["events"] != "start") & (branches["status"] == "ok")]
         rest = label(row, parameters, ("integrator.dt", "perturbation.seed") + INTEGRATOR_DETAIL)
         name = method_label(row) + (f", {rest}" if rest != scene_name(row) else "")
-        colors[name] = integrator_color(row)
+        # Integrator by colour, its step by line style and marker (style.py).
+        styles[name] = {"color": integrator_color(row), **style.variant_style(ranks[step(row)])}
         per_run = after.groupby("horizon")["error_rms"].mean()
         if per_run.empty:  # every branch after an event failed, or the run had no event
             continue
@@ -268,8 +270,7 @@ def restart_error_vs_horizon(directory, out_dir, rows, parameters):
         for name, by_horizon in sorted(groups.items()):
             horizons = sorted(by_horizon)
             _, means, _, half = zip(*(stats.interval(by_horizon[h]) for h in horizons))
-            ax.errorbar(horizons, means, yerr=np.nan_to_num(half), marker="o", capsize=3, label=name,
-                        color=colors[name])
+            ax.errorbar(horizons, means, yerr=np.nan_to_num(half), capsize=3, label=name, **styles[name])
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(scene)
