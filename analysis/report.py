@@ -39,8 +39,6 @@ TABLE_COLUMNS = (
     "error_max", "stable_value", "slow_motion_rms_final", "vibration_cutoff_hz",
 )
 
-# The parameter that numbers the repeats of an ensemble (experiments/sweep/experiment.cpp).
-REPEAT_PARAMETER = "perturbation.seed"
 
 # The summary's method x scene tables: column, title, unit, scale to that unit.
 SUMMARY_METRICS = (
@@ -146,7 +144,7 @@ def summary_tables(rows, parameters):
     a method was run more than once), in their units; empty metrics left out."""
     # The repeats of an ensemble differ only in their seed (docs/experiments.md, "Ensembles"):
     # one method, one row.
-    parameters = [p for p in parameters if p != REPEAT_PARAMETER]
+    parameters = [p for p in parameters if p != plots.REPEAT_PARAMETER]
     frame = pd.DataFrame([{"method": method_name(r, parameters), "scene": plots.scene_name(r),
                            **{m: plots.number(r.get(m)) for m, *_ in SUMMARY_METRICS}} for r in rows])
     if frame.empty:

@@ -41,7 +41,8 @@ def number(value):
         return math.nan
 
 
-# The parameter that numbers an ensemble's repeats: never a series, its runs are one point.
+# The parameter that numbers an ensemble's repeats (experiments/sweep/experiment.cpp): never a
+# series, its runs are one point.
 REPEAT_PARAMETER = "perturbation.seed"
 
 
@@ -214,7 +215,7 @@ def work_precision(out_dir, rows, parameters):
             # One point per method and step: the mean over the repeats, bars their 95 % interval.
             groups, colors = {}, {}
             for row in scene_rows:
-                rest = label(row, parameters, ("integrator.dt", "perturbation.seed") + INTEGRATOR_DETAIL)
+                rest = label(row, parameters, ("integrator.dt", REPEAT_PARAMETER) + INTEGRATOR_DETAIL)
                 key_name = str(row.get("integrator", "?")) + (f", {rest}" if rest != scene_name(row) else "")
                 colors[key_name] = integrator_color(row)
                 by_step = groups.setdefault(key_name, {}).setdefault(row.get("integrator.dt"), [])
@@ -253,7 +254,7 @@ def restart_error_vs_horizon(directory, out_dir, rows, parameters):
             continue
         branches = runfiles.read_restart_error(path)
         after = branches[(branches["events"] != "start") & (branches["status"] == "ok")]
-        rest = label(row, parameters, ("integrator.dt", "perturbation.seed") + INTEGRATOR_DETAIL)
+        rest = label(row, parameters, ("integrator.dt", REPEAT_PARAMETER) + INTEGRATOR_DETAIL)
         name = method_label(row) + (f", {rest}" if rest != scene_name(row) else "")
         # Integrator by colour, its step by line style and marker (style.py).
         styles[name] = {"color": integrator_color(row), **style.variant_style(ranks[step(row)])}
