@@ -38,7 +38,8 @@ bool ExactStageJacobian::same_pattern() const {
 }
 
 void ExactStageJacobian::newton_direction(const Eigen::VectorXd& g, Eigen::VectorXd& d) {
-  d = m_lu.solve(-g);
+  m_rhs = -g;
+  d = m_lu.solve(m_rhs);
   m_system.constraints().zero_fixed(d);
 }
 

@@ -9,9 +9,11 @@
 // direction u turns with x): A is neither symmetric nor definite. The definite S that the line
 // search needs to descend drops both, and there the iteration converges only linearly (rates
 // 0.6-0.9 on the swinging sheet at 1/30 s; at 100x stiffness and 1/30 s the missing damping term
-// made it cycle). A is factorised by sparse LU on the free particles (fixed rows: M I).
+// made it cycle). A is factorised by sparse LU on the free particles (fixed rows: M I): SuiteSparse's
+// UMFPACK (multifrontal, dense kernels in BLAS), 1.7x faster than Eigen's SparseLU on the 64 x 64
+// sheet's SDIRK2 step with OpenBLAS under it (docs/performance.md, "Implicit steps at 1/30 s").
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
+#include <Eigen/UmfPackSupport>
 #include <vector>
 
 #include "core/model/cloth_system.hpp"
@@ -35,8 +37,9 @@ class ExactStageJacobian {
   const ClothSystem& m_system;
   ForceSplit m_split;
   Eigen::SparseMatrix<double> m_dfdx, m_dfdv, m_a;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> m_lu;
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> m_lu;
   std::vector<int> m_outer, m_inner;  // the analysed pattern of m_a
+  Eigen::VectorXd m_rhs;  // -g: UmfPackLU solves a stored vector, not an expression
 };
 
 }  // namespace drape
