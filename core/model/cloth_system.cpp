@@ -34,12 +34,12 @@ void ClothSystem::forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit spli
 
 template <bool per_mass>
 void ClothSystem::evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit split) const {
-  const bool with_springs = split != ForceSplit::non_springs;
-  const bool with_rest = split != ForceSplit::springs;
+  const bool with_springs = split.with_springs;
+  const bool with_body = split.with_body;
   const double c_air = m_cloth.params.damping_air;
   const double m = particle_mass();
   const Vec3 weight = m * m_params.gravity;
-  const bool with_collision = m_dummy && with_rest;
+  const bool with_collision = m_dummy && split.with_collision;
   std::optional<ConstComponents> springs;
   if (with_springs) springs.emplace(m_spring_forces.evaluate(x, v, m_cloth.params.damping_spring));
 
@@ -48,7 +48,7 @@ void ClothSystem::evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceS
   for (int i = 0; i < num_particles(); ++i) {
     Vec3 total = Vec3::Zero();
     if (springs) total = Vec3((*springs)(i, 0), (*springs)(i, 1), (*springs)(i, 2));
-    if (with_rest) total += weight - c_air * particle(v, i);
+    if (with_body) total += weight - c_air * particle(v, i);
     if (with_collision) total += m_collision.force(i, particle(x, i));
     if constexpr (per_mass) total /= m;
     particle(f, i) = total;
@@ -71,7 +71,7 @@ void ClothSystem::rhs(double t, ConstVecRef y, VecRef y_dot, ForceSplit split) c
   const ConstVecMap x(y.data(), n3), v(y.data() + n3, n3);
   VecMap x_dot(y_dot.data(), n3), v_dot(y_dot.data() + n3, n3);
   evaluate_forces<true>(x, v, v_dot, split);
-  if (split == ForceSplit::non_springs) {
+  if (!split.with_kinematics) {
     x_dot.setZero();
     m_constraints.zero_fixed(v_dot);
     return;
@@ -118,7 +118,7 @@ void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool def
                                           ForceSplit split, Visit&& visit) const {
   const SpringSet& springs = m_cloth.springs;
   const double c_spring = m_cloth.params.damping_spring;
-  const bool with_springs = split != ForceSplit::non_springs;
+  const bool with_springs = split.with_springs;
   for (Eigen::Index e = 0; with_springs && e < springs.size(); ++e) {
     const int i = springs.first[e], j = springs.second[e];
     const Vec3 d = particle(x, j) - particle(x, i);
@@ -131,10 +131,13 @@ void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool def
     }
     visit(i, j, jx, jv);
   }
-  if (split == ForceSplit::springs) return;
-  const Mat3 air = -m_cloth.params.damping_air * Mat3::Identity();
+  if (!split.with_collision && !split.with_body) return;
+  const Mat3 air = split.with_body ? Mat3(-m_cloth.params.damping_air * Mat3::Identity())
+                                   : Mat3::Zero();
   for (int i = 0; i < num_particles(); ++i)
-    visit(i, -1, m_collision.jacobian(i, particle(x, i), definite), air);
+    visit(i, -1,
+          split.with_collision ? m_collision.jacobian(i, particle(x, i), definite) : Mat3::Zero(),
+          air);
 }
 
 void ClothSystem::force_jacobian_times(ConstVecRef x, ConstVecRef v,
@@ -219,7 +222,7 @@ void ClothSystem::force_jacobian_blocks(ConstVecRef x, ConstVecRef v, bool defin
     blocks.spring_v[e] = jv;
     ++e;
   });
-  if (split == ForceSplit::non_springs) {
+  if (!split.with_springs) {
     std::fill(blocks.spring_x.begin(), blocks.spring_x.end(), Mat3::Zero());
     std::fill(blocks.spring_v.begin(), blocks.spring_v.end(), Mat3::Zero());
   }

@@ -29,9 +29,25 @@ struct EnergyBreakdown {
   double total() const { return kinetic + spring + gravity + collision; }
 };
 
-/// Which forces an evaluation includes, for the IMEX splitting of arkode-imex: every force, the
-/// springs (elastic and spring damping), or the rest (gravity, air damping, collision).
-enum class ForceSplit { all, springs, non_springs };
+/// Which forces an evaluation includes, for the IMEX splitting of arkode-imex (docs/model.md
+/// section 5): the springs (elastic and spring damping), the collision force, the body forces
+/// (gravity and air damping); `kinematics` says whether y' carries x' = v and the fixed
+/// particles' prescribed motion (the implicit side of a split does, the explicit side does not).
+/// The two sides of a split add up to `all`.
+struct ForceSplit {
+  bool with_springs, with_collision, with_body, with_kinematics;
+
+  static const ForceSplit all;
+  static const ForceSplit springs;                ///< f_I of the springs-only split
+  static const ForceSplit non_springs;            ///< its f_E: collision and body forces
+  static const ForceSplit springs_and_collision;  ///< f_I with the contact implicit
+  static const ForceSplit body;                   ///< its f_E: gravity and air damping
+};
+inline constexpr ForceSplit ForceSplit::all{true, true, true, true};
+inline constexpr ForceSplit ForceSplit::springs{true, false, false, true};
+inline constexpr ForceSplit ForceSplit::non_springs{false, true, true, false};
+inline constexpr ForceSplit ForceSplit::springs_and_collision{true, true, false, true};
+inline constexpr ForceSplit ForceSplit::body{false, false, true, false};
 
 /// dF/dx and dF/dv as 3x3 blocks in the pair pattern of forces.hpp, for solvers that keep the
 /// spring graph's sparsity fixed: spring e (i, j) contributes [-J J; J -J] to rows and columns

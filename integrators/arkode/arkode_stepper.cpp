@@ -60,12 +60,17 @@ ArkodeStepper::~ArkodeStepper() {
   if (pairs_contacts()) m_system.collision().unpair_contacts();
 }
 
+// arkode-imex's split (docs/model.md section 5): the springs implicit, and with
+// `imex_split = springs+collision` the contact force too; what is left is explicit.
 ForceSplit ArkodeStepper::explicit_split() const {
-  return m_kind == ArkodeKind::imex ? ForceSplit::non_springs : ForceSplit::all;
+  if (m_kind != ArkodeKind::imex) return ForceSplit::all;
+  return m_options.imex_split == "springs+collision" ? ForceSplit::body : ForceSplit::non_springs;
 }
 
 ForceSplit ArkodeStepper::implicit_split() const {
-  return m_kind == ArkodeKind::imex ? ForceSplit::springs : ForceSplit::all;
+  if (m_kind != ArkodeKind::imex) return ForceSplit::all;
+  return m_options.imex_split == "springs+collision" ? ForceSplit::springs_and_collision
+                                                      : ForceSplit::springs;
 }
 
 void ArkodeStepper::reset(double t, const Eigen::VectorXd& y) {

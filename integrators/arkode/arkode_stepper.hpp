@@ -62,8 +62,11 @@ class ArkodeStepper final : public Integrator {
   void accumulate_counters();
   ForceSplit explicit_split() const;
   ForceSplit implicit_split() const;
-  /// Whether the collision force is inside Newton's stage equations (arkode-dirk).
-  bool pairs_contacts() const { return m_kind == ArkodeKind::diagonally_implicit; }
+  /// Whether the collision force is inside Newton's stage equations (arkode-dirk, and
+  /// arkode-imex with the contact implicit).
+  bool pairs_contacts() const {
+    return m_kind != ArkodeKind::explicit_rk && implicit_split().with_collision;
+  }
 
   static int explicit_rhs(sunrealtype t, N_Vector y, N_Vector y_dot, void* self);
   static int implicit_rhs(sunrealtype t, N_Vector y, N_Vector y_dot, void* self);

@@ -30,6 +30,7 @@ void reject_unused_keys(const JsonReader& in, const IntegratorOptions& o) {
        "arkode-dirk, arkode-imex and implicit-euler with solve = converged"},
       {"nonlinear_solver", newton, "arkode-dirk and arkode-imex"},
       {"solve", o.name == "implicit-euler", "implicit-euler"},
+      {"imex_split", o.name == "arkode-imex", "arkode-imex"},
       {"max_step_halvings", (newton && !o.adaptive) || converged_euler,
        "fixed-step arkode-dirk and arkode-imex (adaptive runs shrink a failed step themselves) "
        "and implicit-euler with solve = converged"},
@@ -79,6 +80,10 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
       o.nonlinear_solver != "newton")
     throw in.error("nonlinear_solver", "unknown nonlinear solver '" + o.nonlinear_solver +
                                            "' (one of: line-search, newton)");
+  o.imex_split = in.string("imex_split", o.imex_split);
+  if (!o.imex_split.empty() && o.imex_split != "springs" && o.imex_split != "springs+collision")
+    throw in.error("imex_split", "unknown split '" + o.imex_split +
+                                     "' (one of: springs, springs+collision)");
   o.solve = in.string("solve", o.solve);
   if (!o.solve.empty() && o.solve != "linearised" && o.solve != "converged")
     throw in.error("solve", "unknown solve '" + o.solve + "' (one of: linearised, converged)");
@@ -139,6 +144,7 @@ nlohmann::json to_json(const IntegratorOptions& o) {
           {"max_newton_iters", max_newton_iters_of(o)},
           {"nonlinear_solver", o.nonlinear_solver},
           {"solve", o.solve},
+          {"imex_split", o.imex_split},
           {"max_step_halvings", o.max_step_halvings},
           {"linear_tolerance", linear_tolerance_of(o)},
           {"max_linear_iters", o.max_linear_iters},

@@ -25,6 +25,10 @@ struct IntegratorOptions {
   /// arkode-dirk and arkode-imex: how stages are solved, `line-search` (Newton on the incremental
   /// potential with a line search, docs/integrators.md) or `newton` (ARKODE's); "" = newton.
   std::string nonlinear_solver;
+  /// arkode-imex: which forces the implicit part f_I holds, `springs` (elastic and spring
+  /// damping; the collision force explicit) or `springs+collision` (the contact implicit too);
+  /// gravity and air damping stay explicit. "" = springs (docs/model.md section 5).
+  std::string imex_split;
   /// implicit-euler: `linearised` (one Newton step, Baraff and Witkin) or `converged` (backward
   /// Euler solved by the line-search Newton); "" = linearised.
   std::string solve;

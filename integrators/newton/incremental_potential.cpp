@@ -58,8 +58,6 @@ double IncrementalPotential::value(ConstVecRef z, double& magnitude) const {
   const auto x = z.head(n3), v = z.tail(n3);
   const auto& fixed = m_system.constraints().mask();
   const double mass = m_system.particle_mass();
-  const bool springs_part = m_split != ForceSplit::non_springs;
-  const bool rest_part = m_split != ForceSplit::springs;
   double inertia = 0.0, air = 0.0;
   for (Eigen::Index i = 0; i < n3 / 3; ++i) {
     if (fixed[static_cast<std::size_t>(i)]) continue;
@@ -69,7 +67,7 @@ double IncrementalPotential::value(ConstVecRef z, double& magnitude) const {
   const EnergyBreakdown u = m_system.energy(x, v);
   double e = 0.5 * mass * inertia;
   magnitude = e;
-  if (springs_part) {
+  if (m_split.with_springs) {
     e += u.spring;
     magnitude += u.spring;
     const SpringSet& springs = m_system.cloth().springs;
@@ -84,10 +82,14 @@ double IncrementalPotential::value(ConstVecRef z, double& magnitude) const {
     magnitude += m_gamma * 0.5 * c * dissipation;
   }
   // Air damping on fixed particles is no function of the unknowns: left out like their inertia.
-  if (rest_part) {
-    const double rest = u.collision + m_gamma * 0.5 * m_system.cloth().params.damping_air * air;
-    e += u.gravity + rest;
-    magnitude += std::abs(u.gravity) + rest;
+  if (m_split.with_collision) {
+    e += u.collision;
+    magnitude += u.collision;
+  }
+  if (m_split.with_body) {
+    const double dissipation = m_gamma * 0.5 * m_system.cloth().params.damping_air * air;
+    e += u.gravity + dissipation;
+    magnitude += std::abs(u.gravity) + dissipation;
   }
   return e;
 }

@@ -6,6 +6,7 @@
 #include <functional>
 #include <random>
 
+#include "core/dummy/dummy_sources.hpp"
 #include "core/model/cloth_system.hpp"
 #include "core/scene/input_error.hpp"
 
@@ -152,6 +153,22 @@ inline std::unique_ptr<ClothSystem> pinned_test_cloth(double damping_spring = 0.
   auto s = std::make_unique<ClothSystem>(build_cloth(p), nullptr, ForceParams{});
   s->constraints().fix_at(0, s->cloth().rest_positions.segment<3>(0));
   s->constraints().fix_at(3, s->cloth().rest_positions.segment<3>(9));
+  return s;
+}
+
+/// A damped 4 x 5 cloth, one corner pinned, with a sphere just behind its plane: most particles
+/// are within the collision threshold (for the split of the forces with contact).
+inline std::unique_ptr<ClothSystem> cloth_against_sphere(CollisionModel model) {
+  ClothParams p = small_cloth(4, 5);
+  p.damping_spring = 0.05;
+  p.damping_air = 0.01;
+  ForceParams forces;
+  forces.collision.model = model;
+  const auto sphere = std::make_shared<const Dummy>(make_dummy(
+      nlohmann::json{{"builtin", "sphere"}, {"radius", 0.05}, {"center", {0.04, 0.97, -0.054}}},
+      "test", "dummy", "."));
+  auto s = std::make_unique<ClothSystem>(build_cloth(p), sphere, forces);
+  s->constraints().fix_at(0, s->cloth().rest_positions.segment<3>(0));
   return s;
 }
 

@@ -119,47 +119,58 @@ TEST(ClothSystem, FixedParticlesFollowTheirPrescribedMotionInRhsAndProjection) {
   EXPECT_TRUE(s.constraints().fixed_particles().empty());
 }
 
-// The IMEX split: springs plus the rest is every force, for forces, Jacobians and right-hand
-// sides, on a cloth in contact with an object (the rest includes collision) with a fixed particle.
-TEST(ClothSystem, SpringAndNonSpringPartsAddUpToAll) {
-  ClothParams p = testing::small_cloth(4, 5);
-  p.damping_spring = 0.05;
-  p.damping_air = 0.01;
-  // A sphere just behind the cloth's plane: most particles are within the collision threshold.
-  const auto sphere = std::make_shared<const Dummy>(make_dummy(
-      nlohmann::json{{"builtin", "sphere"}, {"radius", 0.05}, {"center", {0.04, 0.97, -0.054}}},
-      "test", "dummy", "."));
-  ClothSystem s(build_cloth(p), sphere, ForceParams{});
-  s.constraints().fix_at(0, s.cloth().rest_positions.segment<3>(0));
+// The IMEX splits: each split's two sides add up to every force, for forces, Jacobians and
+// right-hand sides, on a cloth in contact with an object with a fixed particle. The springs-only
+// split leaves the collision force explicit (with gravity and air damping); springs+collision
+// moves it to the implicit side (docs/model.md section 5).
+TEST(ClothSystem, ImplicitAndExplicitPartsAddUpToAll) {
+  const auto owner = testing::cloth_against_sphere(CollisionModel::particle);
+  const ClothSystem& s = *owner;
   const Eigen::Index n3 = 3 * s.num_particles();
   const Eigen::VectorXd x = jitter(s.cloth().rest_positions, 0.003, 11);
   const Eigen::VectorXd v = jitter(Eigen::VectorXd::Zero(n3), 0.3, 12);
   ASSERT_GT(s.energy(x, v).collision, 0.0);
-
-  auto parts = [&](auto evaluate) {
-    Eigen::VectorXd all(n3), springs(n3), rest(n3);
-    evaluate(ForceSplit::all, all);
-    evaluate(ForceSplit::springs, springs);
-    evaluate(ForceSplit::non_springs, rest);
-    EXPECT_LT((springs + rest - all).norm(), 1e-12 * all.norm());
-    EXPECT_GT(springs.norm(), 0.0);
-    EXPECT_GT(rest.norm(), 0.0);
-  };
-  parts([&](ForceSplit split, Eigen::VectorXd& f) { s.forces(x, v, f, split); });
   const Eigen::VectorXd dx = jitter(Eigen::VectorXd::Zero(n3), 1.0, 13);
   const Eigen::VectorXd dv = jitter(Eigen::VectorXd::Zero(n3), 1.0, 14);
-  for (const bool definite : {false, true})
-    parts([&](ForceSplit split, Eigen::VectorXd& out) {
-      s.force_jacobian_times(x, v, dx, dv, out, definite, split);
-    });
+  Eigen::VectorXd collision_force(n3);
+  for (int i = 0; i < s.num_particles(); ++i)
+    particle(collision_force, i) = s.collision().force(i, particle(x, i));
 
-  Eigen::VectorXd y(2 * n3);
-  y << x, v;
-  Eigen::VectorXd all(2 * n3), springs(2 * n3), rest(2 * n3);
-  s.rhs(0.0, y, all, ForceSplit::all);
-  s.rhs(0.0, y, springs, ForceSplit::springs);
-  s.rhs(0.0, y, rest, ForceSplit::non_springs);
-  EXPECT_LT((springs + rest - all).norm(), 1e-12 * all.norm());
+  struct Split { ForceSplit implicit_part, explicit_part; const char* name; };
+  for (const Split split : {Split{ForceSplit::springs, ForceSplit::non_springs, "springs"},
+                            Split{ForceSplit::springs_and_collision, ForceSplit::body,
+                                  "springs+collision"}}) {
+    SCOPED_TRACE(split.name);
+    auto parts = [&](auto evaluate) {
+      Eigen::VectorXd all(n3), implicit_part(n3), explicit_part(n3);
+      evaluate(ForceSplit::all, all);
+      evaluate(split.implicit_part, implicit_part);
+      evaluate(split.explicit_part, explicit_part);
+      EXPECT_LT((implicit_part + explicit_part - all).norm(), 1e-12 * all.norm());
+      EXPECT_GT(implicit_part.norm(), 0.0);
+      EXPECT_GT(explicit_part.norm(), 0.0);
+    };
+    parts([&](ForceSplit part, Eigen::VectorXd& f) { s.forces(x, v, f, part); });
+    for (const bool definite : {false, true})
+      parts([&](ForceSplit part, Eigen::VectorXd& out) {
+        s.force_jacobian_times(x, v, dx, dv, out, definite, part);
+      });
+
+    Eigen::VectorXd y(2 * n3);
+    y << x, v;
+    Eigen::VectorXd all(2 * n3), implicit_part(2 * n3), explicit_part(2 * n3);
+    s.rhs(0.0, y, all, ForceSplit::all);
+    s.rhs(0.0, y, implicit_part, split.implicit_part);
+    s.rhs(0.0, y, explicit_part, split.explicit_part);
+    EXPECT_LT((implicit_part + explicit_part - all).norm(), 1e-12 * all.norm());
+    EXPECT_TRUE(explicit_part.head(n3).isZero()) << "x' = v is on the implicit side";
+  }
+  // Where the collision force goes: the difference of the two implicit sides.
+  Eigen::VectorXd springs(n3), springs_and_collision(n3);
+  s.forces(x, v, springs, ForceSplit::springs);
+  s.forces(x, v, springs_and_collision, ForceSplit::springs_and_collision);
+  EXPECT_GT(collision_force.norm(), 0.0);
+  EXPECT_LT((springs_and_collision - springs - collision_force).norm(), 1e-12 * collision_force.norm());
 }
 
 }  // namespace

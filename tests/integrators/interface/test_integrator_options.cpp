@@ -71,6 +71,7 @@ TEST(IntegratorOptions, KeysTheIntegratorDoesNotReadAreRejected) {
       {{{"name", "symplectic-euler"}, {"dt", 1e-4}, {"linear_tolerance", 1e-6}},
        "linear_tolerance"},
       {{{"name", "arkode-erk"}, {"dt", 1e-4}, {"max_linear_iters", 9}}, "max_linear_iters"},
+      {{{"name", "arkode-dirk"}, {"dt", 1e-3}, {"imex_split", "springs"}}, "imex_split"},
   };
   for (const auto& u : unused) {
     const std::string prefix = "scene.json: integrator." + std::string(u.key) +
@@ -89,10 +90,20 @@ TEST(IntegratorOptions, KeysAreAcceptedWhereTheyAreRead) {
       {{"name", "arkode-dirk"}, {"dt", 1e-3}, {"max_newton_iters", 4}, {"max_step_halvings", 2},
        {"linear_tolerance", 1e-6}, {"max_linear_iters", 50}},
       {{"name", "arkode-imex"}, {"adaptive", true}, {"max_newton_iters", 4}, {"max_dt", 1e-2}},
+      {{"name", "arkode-imex"}, {"dt", 1e-3}, {"imex_split", "springs+collision"}},
       {{"name", "implicit-euler"}, {"dt", 1e-2}, {"linear_tolerance", 1e-4}, {"max_linear_iters", 50}},
   };
   for (const nlohmann::json& options : used)
     EXPECT_EQ(error_of(options), "no error") << options.dump();
+}
+
+// arkode-imex's split names the forces on the implicit side: two choices, anything else named.
+TEST(IntegratorOptions, ImexSplitIsOneOfTwo) {
+  EXPECT_EQ(error_of({{"name", "arkode-imex"}, {"dt", 1e-3}, {"imex_split", "collision"}}),
+            "scene.json: integrator.imex_split: unknown split 'collision' (one of: springs, "
+            "springs+collision)");
+  for (const char* split : {"springs", "springs+collision"})
+    EXPECT_EQ(error_of({{"name", "arkode-imex"}, {"dt", 1e-3}, {"imex_split", split}}), "no error");
 }
 
 }  // namespace

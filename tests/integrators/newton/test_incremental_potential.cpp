@@ -14,11 +14,13 @@ struct Stage {
   double t = 0.0, gamma = 0.02;
 };
 
-// A damped pinned cloth with a known part a and an iterate z, both shaken.
+// A cloth (by default the damped pinned one, no object) with a known part a and an iterate z,
+// both shaken.
 Stage shaken_stage(ForceSplit split, IncrementalPotential*& potential,
-                   std::unique_ptr<IncrementalPotential>& owner) {
+                   std::unique_ptr<IncrementalPotential>& owner,
+                   std::unique_ptr<ClothSystem> system = testing::pinned_test_cloth(0.05, 0.01)) {
   Stage s;
-  s.system = testing::pinned_test_cloth(0.05, 0.01);
+  s.system = std::move(system);
   s.a = testing::jitter(s.system->initial_state(0.0), 0.003, 3);
   s.z = s.a;
   owner = std::make_unique<IncrementalPotential>(*s.system, split);
@@ -31,11 +33,33 @@ Stage shaken_stage(ForceSplit split, IncrementalPotential*& potential,
   return s;
 }
 
+// The implicit sides of the splits, without an object and, with the contact implicit
+// (arkode-dirk's `all`, arkode-imex's springs+collision), on a sphere with the smooth model.
+struct SplitCase {
+  ForceSplit split;
+  bool contact;
+};
+const SplitCase split_cases[] = {{ForceSplit::all, false},
+                                 {ForceSplit::springs, false},
+                                 {ForceSplit::all, true},
+                                 {ForceSplit::springs_and_collision, true}};
+
+Stage stage_of(const SplitCase& c, IncrementalPotential*& potential,
+               std::unique_ptr<IncrementalPotential>& owner) {
+  if (!c.contact) return shaken_stage(c.split, potential, owner);
+  Stage s = shaken_stage(c.split, potential, owner,
+                         testing::cloth_against_sphere(CollisionModel::smooth));
+  const Eigen::Index n3 = s.z.size() / 2;
+  EXPECT_GT(s.system->energy(s.z.head(n3), s.z.tail(n3)).collision, 0.0) << "in contact";
+  return s;
+}
+
 TEST(IncrementalPotential, GradientIsTheStageResidual) {
-  for (const ForceSplit split : {ForceSplit::all, ForceSplit::springs}) {
+  for (const SplitCase& c : split_cases) {
     IncrementalPotential* p = nullptr;
     std::unique_ptr<IncrementalPotential> owner;
-    Stage s = shaken_stage(split, p, owner);
+    Stage s = stage_of(c, p, owner);
+    const ForceSplit split = c.split;
     const Eigen::Index n3 = s.z.size() / 2;
     // ARKODE's residual z - a - gamma f_I(t, z): zero in x by the elimination, M^-1 g in v.
     Eigen::VectorXd f(s.z.size());
@@ -50,10 +74,10 @@ TEST(IncrementalPotential, GradientIsTheStageResidual) {
 }
 
 TEST(IncrementalPotential, GradientIsTheDerivativeOfTheValue) {
-  for (const ForceSplit split : {ForceSplit::all, ForceSplit::springs}) {
+  for (const SplitCase& c : split_cases) {
     IncrementalPotential* p = nullptr;
     std::unique_ptr<IncrementalPotential> owner;
-    Stage s = shaken_stage(split, p, owner);
+    Stage s = stage_of(c, p, owner);
     const Eigen::Index n3 = s.z.size() / 2;
     Eigen::VectorXd trial = s.z;
     const auto value = [&](const Eigen::VectorXd& v) {
