@@ -37,6 +37,7 @@ ArkodeStepper::ArkodeStepper(ClothSystem& system, ArkodeKind kind,
     : Integrator(system),
       m_kind(kind),
       m_options(options),
+      m_split(split_of(kind, options)),
       m_table(*[&] {
         // An inline table has no ARKODE name: create() builds it from the options.
         static const ArkodeTable user{"user", ArkodeKind::diagonally_implicit, "", ""};
@@ -47,10 +48,11 @@ ArkodeStepper::ArkodeStepper(ClothSystem& system, ArkodeKind kind,
         return table;
       }()) {
   if (kind != ArkodeKind::explicit_rk)
-    m_reduced.emplace(system, *reduced_solve_named(linear_solver_of(options)), implicit_split(),
-                      linear_tolerance_of(options), options.max_linear_iters);
+    m_reduced.emplace(system, *reduced_solve_named(linear_solver_of(options)),
+                      m_split.implicit_part, linear_tolerance_of(options),
+                      options.max_linear_iters);
   if (m_reduced && uses_line_search(options))
-    m_line_search.emplace(system, implicit_split(), *m_reduced);
+    m_line_search.emplace(system, m_split.implicit_part, *m_reduced);
   // The N_Vector views m_y for the whole life of the stepper: m_y keeps this size and buffer.
   m_y = Eigen::VectorXd::Zero(system.size());
   m_y_vector = detail::wrap_vector(m_y, m_context);
@@ -61,16 +63,13 @@ ArkodeStepper::~ArkodeStepper() {
 }
 
 // arkode-imex's split (docs/model.md section 5): the springs implicit, and with
-// `imex_split = springs+collision` the contact force too; what is left is explicit.
-ForceSplit ArkodeStepper::explicit_split() const {
-  if (m_kind != ArkodeKind::imex) return ForceSplit::all;
-  return m_options.imex_split == "springs+collision" ? ForceSplit::body : ForceSplit::non_springs;
-}
-
-ForceSplit ArkodeStepper::implicit_split() const {
-  if (m_kind != ArkodeKind::imex) return ForceSplit::all;
-  return m_options.imex_split == "springs+collision" ? ForceSplit::springs_and_collision
-                                                      : ForceSplit::springs;
+// `imex_split = springs+collision` the contact force too; what is left is explicit. The other
+// kinds have one part, which evaluates every force.
+ArkodeStepper::Split ArkodeStepper::split_of(ArkodeKind kind, const IntegratorOptions& options) {
+  if (kind != ArkodeKind::imex) return {ForceSplit::all, ForceSplit::all};
+  if (options.imex_split == "springs+collision")
+    return {ForceSplit::springs_and_collision, ForceSplit::body};
+  return {ForceSplit::springs, ForceSplit::non_springs};
 }
 
 void ArkodeStepper::reset(double t, const Eigen::VectorXd& y) {
@@ -299,13 +298,13 @@ void ArkodeStepper::accumulate_counters() {
 
 int ArkodeStepper::explicit_rhs(sunrealtype t, N_Vector y, N_Vector y_dot, void* data) {
   ArkodeStepper& self = self_of(data);
-  self.m_system.rhs(t, view(y), view(y_dot), self.explicit_split());
+  self.m_system.rhs(t, view(y), view(y_dot), self.m_split.explicit_part);
   return 0;
 }
 
 int ArkodeStepper::implicit_rhs(sunrealtype t, N_Vector y, N_Vector y_dot, void* data) {
   ArkodeStepper& self = self_of(data);
-  self.m_system.rhs(t, view(y), view(y_dot), self.implicit_split());
+  self.m_system.rhs(t, view(y), view(y_dot), self.m_split.implicit_part);
   return 0;
 }
 
@@ -331,7 +330,7 @@ int ArkodeStepper::jacobian_times(N_Vector w, N_Vector j_w, sunrealtype, N_Vecto
   out.head(n3) = in.tail(n3);
   self.m_system.constraints().zero_fixed(out.head(n3));
   self.m_system.force_jacobian_times(state.head(n3), state.tail(n3), in.head(n3), in.tail(n3),
-                                     out.tail(n3), false, self.implicit_split());
+                                     out.tail(n3), false, self.m_split.implicit_part);
   out.tail(n3) /= self.m_system.particle_mass();
   return 0;
 }

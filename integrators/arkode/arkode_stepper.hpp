@@ -29,8 +29,8 @@ namespace drape {
 /// particle keeps the contact of the step start (its nearest object particle, or the surface),
 /// linearised there, paired again after every accepted step. A switch of the nearest object
 /// particle (or of the surface's piece) between Newton iterates made the collision force jump
-/// and Newton cycle (docs/integrators.md). arkode-erk and arkode-imex (collision explicit)
-/// evaluate the unpaired model.
+/// and Newton cycle (docs/integrators.md). arkode-erk and arkode-imex with the collision
+/// explicit (its default split) evaluate the unpaired model.
 class ArkodeStepper final : public Integrator {
  public:
   /// `options` must have passed validate_integrator_choice().
@@ -48,6 +48,12 @@ class ArkodeStepper final : public Integrator {
          backtracks = 0;
   };
 
+  /// The forces f_I and f_E evaluate.
+  struct Split {
+    ForceSplit implicit_part, explicit_part;
+  };
+  static Split split_of(ArkodeKind kind, const IntegratorOptions& options);
+
   void create(double t);
   void set_up_newton();
   void set_up_linear_solver();
@@ -60,12 +66,10 @@ class ArkodeStepper final : public Integrator {
   void evolve_fixed(double t_end);
   ArkodeCounts read_counts() const;
   void accumulate_counters();
-  ForceSplit explicit_split() const;
-  ForceSplit implicit_split() const;
   /// Whether the collision force is inside Newton's stage equations (arkode-dirk, and
   /// arkode-imex with the contact implicit).
   bool pairs_contacts() const {
-    return m_kind != ArkodeKind::explicit_rk && implicit_split().with_collision;
+    return m_kind != ArkodeKind::explicit_rk && m_split.implicit_part.with_collision;
   }
 
   static int explicit_rhs(sunrealtype t, N_Vector y, N_Vector y_dot, void* self);
@@ -83,6 +87,7 @@ class ArkodeStepper final : public Integrator {
 
   ArkodeKind m_kind;
   IntegratorOptions m_options;
+  Split m_split;  // chosen once by split_of: every right-hand side reads it
   const ArkodeTable& m_table;
   std::optional<ReducedNewtonSolver> m_reduced;  // implicit kinds only
   std::optional<LineSearchNewton> m_line_search;  // with nonlinear_solver = line-search
