@@ -7,20 +7,20 @@
 
 #include <functional>
 
-#include "integrators/newton/aggregation_multigrid.hpp"
+#include "integrators/newton/grid_multigrid.hpp"
 #include "tests/support/grid_matrix.hpp"
 
 namespace drape {
 namespace {
 
-using Kernel = std::function<void(const detail::BlockSparseMatrix&, detail::AggregationMultigrid&,
+using Kernel = std::function<void(const detail::BlockSparseMatrix&, detail::GridMultigrid&,
                                   const Eigen::VectorXd&, Eigen::VectorXd&)>;
 
 // Times `kernel` on the n x n grid's matrix, its multigrid levels formed, with a random vector.
 void time_on_grid(benchmark::State& state, const Kernel& kernel) {
   const int n = static_cast<int>(state.range(0));
   const detail::BlockSparseMatrix a = testing::grid_matrix(n, n, 1);
-  detail::AggregationMultigrid multigrid;
+  detail::GridMultigrid multigrid;
   multigrid.build(a, n, n);
   multigrid.update(a);
   const Eigen::VectorXd r = Eigen::VectorXd::Random(3 * n * n);

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "core/model/cloth_system.hpp"
-#include "integrators/newton/aggregation_multigrid.hpp"
+#include "integrators/newton/grid_multigrid.hpp"
 #include "integrators/newton/block_sparse_matrix.hpp"
 
 namespace drape {
@@ -101,7 +101,7 @@ class ReducedNewtonSolver {
   // [2e + 1], and the multigrid levels of pcg-multigrid.
   detail::BlockSparseMatrix m_matrix;
   std::vector<int> m_spring_blocks;
-  detail::AggregationMultigrid m_multigrid;
+  detail::GridMultigrid m_multigrid;
   // sparse-direct only: S in a pattern built once, its blocks' slots, the symbolic analysis.
   Eigen::SparseMatrix<double> m_s;
   std::vector<BlockSlot> m_diagonal_slots, m_spring_slots;  // spring e: (i, j) at 2e, (j, i) at 2e+1

@@ -1,0 +1,129 @@
+#include "integrators/newton/grid_multigrid.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
+namespace drape::detail {
+
+namespace {
+
+// The coarsest grid is solved densely: 16 nodes are a 48 x 48 Cholesky factorisation, far
+// cheaper than a fine-grid sweep.
+constexpr int coarsest_nodes = 16;
+
+/// Linear interpolation along one grid direction of n fine nodes: fine node r's coarse parents
+/// and weights (coarse node r / 2 sits on fine node r for even r).
+std::vector<std::pair<int, double>> parents_1d(int r, int n) {
+  if (r % 2 == 0) return {{r / 2, 1.0}};
+  if (r + 1 < n) return {{r / 2, 0.5}, {r / 2 + 1, 0.5}};
+  return {{r / 2, 1.0}};  // past the last coarse node of an even-sized grid
+}
+
+Eigen::MatrixXd dense(const BlockSparseMatrix& a) {
+  const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(a.rows());
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n3, n3);
+  for (int i = 0; i < a.rows(); ++i)
+    for (int k = a.row_start(i); k < a.row_start(i + 1); ++k)
+      out.block<3, 3>(3 * i, 3 * a.column(k)) = a.blocks()[static_cast<std::size_t>(k)];
+  return out;
+}
+
+}  // namespace
+
+void GridMultigrid::build(const BlockSparseMatrix& fine, int rows, int cols) {
+  m_levels.clear();
+  const BlockSparseMatrix* finer = &fine;
+  // Levels are held by value in a vector that grows: reserve so `finer` stays valid.
+  int levels = 0;
+  for (int r = rows, c = cols; r * c > coarsest_nodes; r = (r + 1) / 2, c = (c + 1) / 2) ++levels;
+  m_levels.reserve(static_cast<std::size_t>(levels));
+  while (rows * cols > coarsest_nodes) {
+    const int coarse_rows = (rows + 1) / 2, coarse_cols = (cols + 1) / 2;
+    Level& level = m_levels.emplace_back();
+    level.parent_start.assign(1, 0);
+    for (int i = 0; i < rows * cols; ++i) {
+      for (const auto& [pr, wr] : parents_1d(i / cols, rows))
+        for (const auto& [pc, wc] : parents_1d(i % cols, cols)) {
+          level.parent.push_back(pr * coarse_cols + pc);
+          level.weight.push_back(wr * wc);
+        }
+      level.parent_start.push_back(static_cast<int>(level.parent.size()));
+    }
+    // Block (i, j) of A adds weight_iI weight_jJ A_ij to block (I, J) of P^T A P for every
+    // parent I of i and J of j.
+    auto for_each_term = [&](auto&& add) {
+      for (int i = 0; i < finer->rows(); ++i)
+        for (int k = finer->row_start(i); k < finer->row_start(i + 1); ++k) {
+          const int j = finer->column(k);
+          for (int p = level.parent_start[static_cast<std::size_t>(i)];
+               p < level.parent_start[static_cast<std::size_t>(i) + 1]; ++p)
+            for (int q = level.parent_start[static_cast<std::size_t>(j)];
+                 q < level.parent_start[static_cast<std::size_t>(j) + 1]; ++q)
+              add(k, level.parent[static_cast<std::size_t>(p)],
+                  level.parent[static_cast<std::size_t>(q)],
+                  level.weight[static_cast<std::size_t>(p)] *
+                      level.weight[static_cast<std::size_t>(q)]);
+        }
+    };
+    std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(coarse_rows * coarse_cols));
+    for_each_term([&](int, int a, int b, double) {
+      auto& list = neighbours[static_cast<std::size_t>(a)];
+      if (a != b && std::find(list.begin(), list.end(), b) == list.end()) list.push_back(b);
+    });
+    level.matrix.set_pattern(neighbours);
+    for_each_term([&](int k, int a, int b, double w) {
+      level.galerkin.push_back({k, level.matrix.find(a, b), w});
+    });
+    rows = coarse_rows;
+    cols = coarse_cols;
+    finer = &level.matrix;
+  }
+}
+
+void GridMultigrid::update(const BlockSparseMatrix& fine) {
+  const BlockSparseMatrix* finer = &fine;
+  for (Level& level : m_levels) {
+    std::vector<Mat3>& coarse = level.matrix.blocks();
+    std::fill(coarse.begin(), coarse.end(), Mat3::Zero());
+    const std::vector<Mat3>& blocks = finer->blocks();
+    for (const GalerkinTerm& t : level.galerkin)
+      coarse[static_cast<std::size_t>(t.coarse)] += t.weight * blocks[static_cast<std::size_t>(t.fine)];
+    level.matrix.invert_diagonal();
+    finer = &level.matrix;
+  }
+  m_coarsest.compute(dense(*finer));
+  if (m_coarsest.info() != Eigen::Success)
+    throw std::logic_error("GridMultigrid: coarsest operator not positive definite");
+}
+
+void GridMultigrid::apply(const BlockSparseMatrix& fine, const Eigen::VectorXd& r,
+                          Eigen::VectorXd& out) {
+  cycle(fine, 0, r, out);
+}
+
+void GridMultigrid::cycle(const BlockSparseMatrix& a, std::size_t next, const Eigen::VectorXd& b,
+                          Eigen::VectorXd& x) {
+  if (next == m_levels.size()) {
+    x = m_coarsest.solve(b);
+    return;
+  }
+  Level& coarse = m_levels[next];
+  a.forward_sweep_from_zero(b, x, coarse.finer_residual);
+  // Restriction P^T r, then prolongation x += P x_c, both through P's rows.
+  coarse.b.setZero(3 * static_cast<Eigen::Index>(coarse.matrix.rows()));
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    for (int p = coarse.parent_start[static_cast<std::size_t>(i)];
+         p < coarse.parent_start[static_cast<std::size_t>(i) + 1]; ++p)
+      particle(coarse.b, coarse.parent[static_cast<std::size_t>(p)]) +=
+          coarse.weight[static_cast<std::size_t>(p)] * particle(coarse.finer_residual, i);
+  cycle(coarse.matrix, next + 1, coarse.b, coarse.x);
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    for (int p = coarse.parent_start[static_cast<std::size_t>(i)];
+         p < coarse.parent_start[static_cast<std::size_t>(i) + 1]; ++p)
+      particle(x, i) += coarse.weight[static_cast<std::size_t>(p)] *
+                        particle(coarse.x, coarse.parent[static_cast<std::size_t>(p)]);
+  a.backward_sweep(b, x);
+}
+
+}  // namespace drape::detail
