@@ -38,6 +38,41 @@ std::vector<Override> read_overrides(JsonReader& in, const std::string& key) {
   return out;
 }
 
+// The case objects of `in`'s "cases" list.
+std::vector<std::vector<Override>> read_case_list(JsonReader& in) {
+  const nlohmann::json& cases = in.raw("cases");
+  if (!cases.is_array() || cases.empty())
+    throw in.error("cases", "expected a non-empty list of objects or a cases file name");
+  std::vector<std::vector<Override>> out;
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    const std::string field = fmt::format("cases[{}]", c);
+    if (!cases[c].is_object()) throw in.error(field, "expected an object of scene paths and values");
+    std::vector<Override> one;
+    for (const auto& item : cases[c].items()) {
+      check_key(in, field + "." + item.key(), item.key());
+      one.emplace_back(item.key(), item.value());
+    }
+    out.push_back(std::move(one));
+  }
+  return out;
+}
+
+// `cases` inline, or the name of a file beside the definition whose object holds them under
+// "cases" (docs/experiments.md): several definitions then share one list, e.g. every implicit
+// table, instead of each repeating it.
+std::vector<std::vector<Override>> read_cases(JsonReader& in, const std::filesystem::path& base_dir) {
+  const nlohmann::json& value = in.raw("cases");
+  if (!value.is_string()) return read_case_list(in);
+  const std::filesystem::path path = base_dir / value.get<std::string>();
+  if (const auto reason = unreadable_file_reason(path.string()))
+    throw in.error("cases", *reason + ": " + path.string());
+  const nlohmann::json source = read_json_file(path.string());
+  JsonReader shared(source, path.string(), "");
+  auto cases = read_case_list(shared);
+  shared.finish();
+  return cases;
+}
+
 BisectSpec read_bisect(JsonReader in) {
   BisectSpec b;
   b.parameter = in.string("parameter", b.parameter);
@@ -204,20 +239,7 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
       e.sweep.emplace_back(key, std::vector<nlohmann::json>(values.begin(), values.end()));
     }
   }
-  if (in.has("cases")) {
-    const nlohmann::json& cases = in.raw("cases");
-    if (!cases.is_array() || cases.empty()) throw in.error("cases", "expected a non-empty list of objects");
-    for (std::size_t c = 0; c < cases.size(); ++c) {
-      const std::string field = fmt::format("cases[{}]", c);
-      if (!cases[c].is_object()) throw in.error(field, "expected an object of scene paths and values");
-      std::vector<Override> one;
-      for (const auto& item : cases[c].items()) {
-        check_key(in, field + "." + item.key(), item.key());
-        one.emplace_back(item.key(), item.value());
-      }
-      e.cases.push_back(std::move(one));
-    }
-  }
+  if (in.has("cases")) e.cases = read_cases(in, base_dir);
   if (in.has("reference")) {
     e.reference = read_overrides(in, "reference");
     if (e.reference.empty()) throw in.error("reference", "must set at least one value");

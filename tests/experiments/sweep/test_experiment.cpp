@@ -179,6 +179,48 @@ TEST(ExperimentPlan, ShardsPartitionThePlanExactlyOnce) {
     EXPECT_THROW(drape::parse_shard(bad), InputError) << bad;
 }
 
+// `cases` may name a file beside the definition holding {"cases": [...]}: the same plan as the
+// list inline; its errors name that file, a missing one the definition's field.
+TEST(ExperimentFile, CasesFromASharedFileAreTheInlineCases) {
+  const fs::path dir = temp_dir("cases_file");
+  write_scene(dir);
+  const json list = json::parse(R"([{"integrator.name": "leapfrog"},
+      {"integrator.name": "symplectic-euler", "cloth.damping_spring": 0.01}])");
+  json inline_cases = two_by_three();
+  inline_cases["sweep"].erase("integrator.name");
+  inline_cases["cases"] = list;
+  fs::create_directories(dir / "cases");
+  std::ofstream(dir / "cases" / "two.json") << json{{"cases", list}}.dump();
+  json shared = inline_cases;
+  shared["cases"] = "cases/two.json";
+  const auto expected = drape::expand_runs(parse(inline_cases, dir));
+  const auto plan = drape::expand_runs(parse(shared, dir));
+  ASSERT_EQ(plan.size(), 6u);
+  for (std::size_t k = 0; k < plan.size(); ++k) {
+    EXPECT_EQ(plan[k].assignments(), expected[k].assignments());
+    EXPECT_EQ(plan[k].id, expected[k].id);
+  }
+
+  shared["cases"] = "cases/missing.json";
+  EXPECT_EQ(error_field(shared, dir), "cases");
+  auto error_in = [&](const json& content) -> std::pair<std::string, std::string> {
+    std::ofstream(dir / "cases" / "bad.json") << content.dump();
+    json definition = inline_cases;
+    definition["cases"] = "cases/bad.json";
+    try {
+      parse(definition, dir);
+    } catch (const InputError& e) {
+      return {fs::path(e.file()).filename().string(), e.field()};
+    }
+    return {"", "<no error>"};
+  };
+  using Where = std::pair<std::string, std::string>;
+  EXPECT_EQ(error_in(json{{"cases", json::array({json{{"a..b", 1}}})}}), Where("bad.json", "cases[0].a..b"));
+  EXPECT_EQ(error_in(json{{"cases", list}, {"colour", 1}}), Where("bad.json", "colour"));
+  EXPECT_EQ(error_in(json{{"cases", json::array()}}), Where("bad.json", "cases"));
+  EXPECT_EQ(error_in(json::array()), Where("bad.json", ""));
+}
+
 TEST(ExperimentFile, ErrorsNameTheField) {
   const fs::path dir = temp_dir("errors");
   write_scene(dir);
