@@ -126,15 +126,17 @@ int live(const LiveOptions& o) {
                      fmt::format("cannot listen on 127.0.0.1:{} (in use or not allowed)", o.port));
   std::thread server_thread([&server] { server.listen_after_bind(); });
 
+  // Ctrl-C stops the session from the moment the banner says so: a client that waits for the
+  // banner and then interrupts must not meet the default handler (which kills the process).
+  g_interrupted = false;
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
   const std::string url = fmt::format("http://127.0.0.1:{}/", o.port);
   fmt::print("drapelab live {} -> {}: {} (Ctrl-C stops){}\n", o.scene_file, o.out_dir, url,
              sensor ? fmt::format("; sensor bridge on 127.0.0.1:{}", o.sensor_port) : "");
   std::fflush(stdout);
   if (o.open) std::system(("xdg-open " + url + " >/dev/null 2>&1 &").c_str());
 
-  g_interrupted = false;
-  std::signal(SIGINT, on_interrupt);
-  std::signal(SIGTERM, on_interrupt);
   std::string status;
   std::thread simulation_thread([&session, &status] { status = session.run(); });
   while (!session.finished()) {

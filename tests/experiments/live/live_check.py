@@ -66,6 +66,17 @@ def main():
                               "--set", 'restart_error={"reference":{"name":"leapfrog","dt":1e-5},"horizons":[0.1]}'],
                              capture_output=True, text=True)
     assert refused.returncode == 2 and "restart_error" in refused.stderr, (refused.returncode, refused.stderr)
+    # Ctrl-C right after the banner stops the session (exit 0, status "stopped"): the handler is
+    # in place before the banner is out (it was not: 3 of 80 such stops under load were killed
+    # by the default handler, exit -2)
+    for k in range(10):
+        early = subprocess.Popen([drapelab, "live", str(scene), "--port", str(free_port()),
+                                  "--out", str(work / f"early{k}"), "--set", "duration=60"],
+                                 stdout=subprocess.PIPE, text=True)
+        early.stdout.readline()
+        early.send_signal(signal.SIGINT)
+        assert early.wait(timeout=30) == 0, (k, early.returncode)
+        assert json.loads((work / f"early{k}" / "summary.json").read_text())["status"] == "stopped"
     print(f"live check: {len(frames)} frames, events {live_events}")
 
 
