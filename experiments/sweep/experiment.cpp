@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdint>
 #include <set>
+#include <tuple>
+#include <utility>
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
@@ -38,11 +40,10 @@ std::vector<Override> read_overrides(JsonReader& in, const std::string& key) {
   return out;
 }
 
-// The case objects of `in`'s "cases" list.
-std::vector<std::vector<Override>> read_case_list(JsonReader& in) {
+// The case objects of `in`'s "cases" list; `expected` says what else the field may hold.
+std::vector<std::vector<Override>> read_case_list(JsonReader& in, const std::string& expected) {
   const nlohmann::json& cases = in.raw("cases");
-  if (!cases.is_array() || cases.empty())
-    throw in.error("cases", "expected a non-empty list of objects or a cases file name");
+  if (!cases.is_array() || cases.empty()) throw in.error("cases", expected);
   std::vector<std::vector<Override>> out;
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const std::string field = fmt::format("cases[{}]", c);
@@ -60,17 +61,24 @@ std::vector<std::vector<Override>> read_case_list(JsonReader& in) {
 // `cases` inline, or the name of a file beside the definition whose object holds them under
 // "cases" (docs/experiments.md): several definitions then share one list, e.g. every implicit
 // table, instead of each repeating it.
-std::vector<std::vector<Override>> read_cases(JsonReader& in, const std::filesystem::path& base_dir) {
+// Returns the cases and, when they come from a file, its path.
+std::pair<std::vector<std::vector<Override>>, std::string> read_cases(
+    JsonReader& in, const std::filesystem::path& base_dir) {
   const nlohmann::json& value = in.raw("cases");
-  if (!value.is_string()) return read_case_list(in);
-  const std::filesystem::path path = base_dir / value.get<std::string>();
+  if (!value.is_string())
+    return {read_case_list(in, "expected a non-empty list of objects or a cases file name"), ""};
+  const std::string name = value.get<std::string>();
+  if (name.empty() || std::filesystem::path(name).is_absolute())
+    throw in.error("cases", "expected a cases file name relative to this file, got \"" + name + "\"");
+  const std::filesystem::path path = base_dir / name;
   if (const auto reason = unreadable_file_reason(path.string()))
     throw in.error("cases", *reason + ": " + path.string());
   const nlohmann::json source = read_json_file(path.string());
   JsonReader shared(source, path.string(), "");
-  auto cases = read_case_list(shared);
+  auto cases = read_case_list(
+      shared, "expected a non-empty list of case objects (a cases file cannot name another file)");
   shared.finish();
-  return cases;
+  return {std::move(cases), path.string()};
 }
 
 BisectSpec read_bisect(JsonReader in) {
@@ -92,12 +100,17 @@ void check_disjoint(const JsonReader& in, const Experiment& e) {
   for (const auto& [key, values] : e.sweep) swept.insert(key);
   for (const auto& [key, value] : e.set)
     if (swept.count(key)) throw in.error("set." + key, "is also swept");
+  // A clash in a shared cases file names that file's field and the definition.
+  auto clash = [&](std::size_t c, const std::string& key, const std::string& what) {
+    const std::string field = fmt::format("cases[{}].{}", c, key);
+    if (e.cases_file.empty()) return in.error(field, what);
+    return InputError(e.cases_file, field, what + " in " + in.file());
+  };
   for (std::size_t c = 0; c < e.cases.size(); ++c)
     for (const auto& [key, value] : e.cases[c]) {
-      if (swept.count(key))
-        throw in.error(fmt::format("cases[{}].{}", c, key), "is also swept");
+      if (swept.count(key)) throw clash(c, key, "is also swept");
       for (const auto& [set_key, set_value] : e.set)
-        if (set_key == key) throw in.error(fmt::format("cases[{}].{}", c, key), "is also in set");
+        if (set_key == key) throw clash(c, key, "is also in set");
     }
   if (e.bisect) {
     const std::string& p = e.bisect->parameter;
@@ -239,7 +252,7 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
       e.sweep.emplace_back(key, std::vector<nlohmann::json>(values.begin(), values.end()));
     }
   }
-  if (in.has("cases")) e.cases = read_cases(in, base_dir);
+  if (in.has("cases")) std::tie(e.cases, e.cases_file) = read_cases(in, base_dir);
   if (in.has("reference")) {
     e.reference = read_overrides(in, "reference");
     if (e.reference.empty()) throw in.error("reference", "must set at least one value");

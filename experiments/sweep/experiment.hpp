@@ -32,6 +32,7 @@ struct Experiment {
   std::vector<Override> set;                     ///< overrides applied to every run
   std::vector<std::pair<std::string, std::vector<nlohmann::json>>> sweep;  ///< cartesian product
   std::vector<std::vector<Override>> cases;      ///< explicit combinations, times the sweep
+  std::string cases_file;  ///< the shared file the cases were read from, "" when inline
   std::vector<Override> reference;               ///< overrides that make a run's reference run
   /// With a reference: every other run measures its restart error (docs/analysis.md, "Restart
   /// error") over these horizons [s]; empty: none.

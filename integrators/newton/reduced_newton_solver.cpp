@@ -122,8 +122,8 @@ void ReducedNewtonSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd
     m_matrix.precondition_jacobi(r, out);
     return;
   }
-  // The cycle mixes fixed particles into aggregates with free ones; their rows of S are
-  // decoupled (M I), so zeroing them keeps the preconditioner symmetric positive definite on
+  // The coarse grids interpolate fixed particles' values together with free ones'; their rows
+  // of S are decoupled (M I), so zeroing them keeps the preconditioner symmetric positive definite on
   // the free particles, where CG's iterates live.
   m_multigrid.apply(m_matrix, r, out);
   m_system.constraints().zero_fixed(out);

@@ -201,7 +201,11 @@ TEST(ExperimentFile, CasesFromASharedFileAreTheInlineCases) {
     EXPECT_EQ(plan[k].id, expected[k].id);
   }
 
-  shared["cases"] = "cases/missing.json";
+  for (const char* bad : {"cases/missing.json", "cases", "", "/etc/hostname"}) {
+    shared["cases"] = bad;
+    EXPECT_EQ(error_field(shared, dir), "cases") << bad;
+  }
+  shared["cases"] = 5;
   EXPECT_EQ(error_field(shared, dir), "cases");
   auto error_in = [&](const json& content) -> std::pair<std::string, std::string> {
     std::ofstream(dir / "cases" / "bad.json") << content.dump();
@@ -219,6 +223,11 @@ TEST(ExperimentFile, CasesFromASharedFileAreTheInlineCases) {
   EXPECT_EQ(error_in(json{{"cases", list}, {"colour", 1}}), Where("bad.json", "colour"));
   EXPECT_EQ(error_in(json{{"cases", json::array()}}), Where("bad.json", "cases"));
   EXPECT_EQ(error_in(json::array()), Where("bad.json", ""));
+  EXPECT_EQ(error_in(json{{"cases", "two.json"}}), Where("bad.json", "cases"));
+  EXPECT_EQ(error_in(json{{"cases", json::array({1})}}), Where("bad.json", "cases[0]"));
+  // a clash with the definition's sweep (integrator.dt) is reported in the cases file
+  EXPECT_EQ(error_in(json{{"cases", json::array({json{{"integrator.dt", 0.01}}})}}),
+            Where("bad.json", "cases[0].integrator.dt"));
 }
 
 TEST(ExperimentFile, ErrorsNameTheField) {

@@ -99,8 +99,9 @@ std::unique_ptr<ClothSystem> compressed_cloth(int rows, int cols, double k_bendi
 }
 
 TEST(ReducedNewtonSolver, MultigridCgMatchesTheFactorisationOnALargerCloth) {
-  // Odd, unequal sides (aggregates of one or two particles at the edges) and bending springs
-  // (a coupling two particles apart).
+  // Odd, unequal sides (coarse grids of odd and even sizes, the last node of an even side
+  // copying its one coarse neighbour) and bending springs (a coupling two particles apart,
+  // which widens the coarse patterns).
   Eigen::VectorXd y;
   auto s = compressed_cloth(25, 19, 5.0, y);
   const Eigen::Index n3 = 3 * s->num_particles();
