@@ -47,7 +47,8 @@ std::vector<std::vector<Override>> read_case_list(JsonReader& in, const std::str
   std::vector<std::vector<Override>> out;
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const std::string field = fmt::format("cases[{}]", c);
-    if (!cases[c].is_object()) throw in.error(field, "expected an object of scene paths and values");
+    if (!cases[c].is_object())
+      throw in.error(field, "expected an object of scene paths and values");
     std::vector<Override> one;
     for (const auto& item : cases[c].items()) {
       check_key(in, field + "." + item.key(), item.key());
@@ -69,7 +70,8 @@ std::pair<std::vector<std::vector<Override>>, std::string> read_cases(
     return {read_case_list(in, "expected a non-empty list of objects or a cases file name"), ""};
   const std::string name = value.get<std::string>();
   if (name.empty() || std::filesystem::path(name).is_absolute())
-    throw in.error("cases", "expected a cases file name relative to this file, got \"" + name + "\"");
+    throw in.error("cases",
+                   "expected a cases file name relative to this file, got \"" + name + "\"");
   const std::filesystem::path path = base_dir / name;
   if (const auto reason = unreadable_file_reason(path.string()))
     throw in.error("cases", *reason + ": " + path.string());

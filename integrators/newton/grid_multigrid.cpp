@@ -88,7 +88,8 @@ void GridMultigrid::update(const BlockSparseMatrix& fine) {
     std::fill(coarse.begin(), coarse.end(), Mat3::Zero());
     const std::vector<Mat3>& blocks = finer->blocks();
     for (const GalerkinTerm& t : level.galerkin)
-      coarse[static_cast<std::size_t>(t.coarse)] += t.weight * blocks[static_cast<std::size_t>(t.fine)];
+      coarse[static_cast<std::size_t>(t.coarse)] +=
+          t.weight * blocks[static_cast<std::size_t>(t.fine)];
     level.matrix.invert_diagonal();
     finer = &level.matrix;
   }

@@ -123,8 +123,8 @@ void ReducedNewtonSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd
     return;
   }
   // The coarse grids interpolate fixed particles' values together with free ones'; their rows
-  // of S are decoupled (M I), so zeroing them keeps the preconditioner symmetric positive definite on
-  // the free particles, where CG's iterates live.
+  // of S are decoupled (M I), so zeroing them keeps the preconditioner symmetric positive
+  // definite on the free particles, where CG's iterates live.
   m_multigrid.apply(m_matrix, r, out);
   m_system.constraints().zero_fixed(out);
 }
