@@ -7,7 +7,7 @@ namespace drape {
 ExactStageJacobian::ExactStageJacobian(const ClothSystem& system, ForceSplit split)
     : m_system(system), m_split(split) {}
 
-bool ExactStageJacobian::factorize(ConstVecRef x, ConstVecRef v, double gamma) {
+bool ExactStageJacobian::factorize(ConstVecRef x, ConstVecRef v, double gamma, double shift) {
   // dF/dx and dF/dv have the fixed particles' rows zeroed; their columns are dropped below, so
   // a fixed particle's row and column of A are M I (its velocity is no unknown).
   m_system.force_jacobians(x, v, false, m_dfdx, m_dfdv, m_split);
@@ -18,7 +18,8 @@ bool ExactStageJacobian::factorize(ConstVecRef x, ConstVecRef v, double gamma) {
   });
   Eigen::SparseMatrix<double> mass(m_a.rows(), m_a.cols());
   mass.setIdentity();
-  m_a += m_system.particle_mass() * mass;
+  // The shift adds to the mass on the diagonal only: the pattern, and so the analysis, is kept.
+  m_a += (1.0 + shift) * m_system.particle_mass() * mass;
   // The symbolic analysis (column ordering, elimination tree) depends on the pattern alone,
   // which changes only with the fixed set or the contacts: redone then, not every iteration.
   if (!same_pattern()) {

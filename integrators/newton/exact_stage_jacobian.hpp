@@ -20,14 +20,16 @@
 
 namespace drape {
 
-/// Factorises the exact stage Jacobian A and solves A d = -g.
+/// Factorises the exact stage Jacobian A, optionally shifted by a multiple of M, and solves
+/// (A + shift M) d = -g.
 class ExactStageJacobian {
  public:
   ExactStageJacobian(const ClothSystem& system, ForceSplit split);
 
-  /// Forms and factorises A at (x, v) for `gamma`; false when A is singular.
-  bool factorize(ConstVecRef x, ConstVecRef v, double gamma);
-  /// d = -A^-1 g (3N, zero on fixed particles).
+  /// Forms and factorises A + shift M at (x, v) for `gamma`; false when it is singular. A
+  /// positive `shift` is the Levenberg-Marquardt shift of LineSearchNewton's local phase.
+  bool factorize(ConstVecRef x, ConstVecRef v, double gamma, double shift = 0.0);
+  /// d = -(A + shift M)^-1 g (3N, zero on fixed particles).
   void newton_direction(const Eigen::VectorXd& g, Eigen::VectorXd& d);
 
  private:

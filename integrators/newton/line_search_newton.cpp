@@ -19,6 +19,19 @@ constexpr double round_off = 1e3 * std::numeric_limits<double>::epsilon();
 // 0.1 (Eisenstat and Walker use 0.9) cost step halvings on the swinging sheet and the drape
 // scenes (docs/integrators.md, "Cost of a Newton iteration").
 constexpr double max_forcing = 1e-2;
+// The Levenberg-Marquardt shift of the exact Jacobian, in units of M (More 1978, "The
+// Levenberg-Marquardt algorithm: implementation and theory"; Nocedal and Wright 2006, section
+// 4.3): where A + shift M gives no descent it grows tenfold from `min_shift`; after a full step
+// it shrinks threefold, to zero below `min_shift`, so that a definite A keeps Newton's quadratic
+// convergence, and after a backtracked step it grows tenfold. |M^-1 A| is of the order of 8
+// gamma^2 k / m (the stencil's neighbours), about 1e6 for the 64 x 64 sheet at 100x stiffness
+// and 1/30 s; while it is below `max_shift` / 3, the direction of A + max_shift M is within
+// 50 % of -g / (max_shift m) and descends, so the definite S remains the fallback for a
+// singular factorisation.
+constexpr double min_shift = 1e-3;
+constexpr double max_shift = 1e8;
+constexpr double shift_growth = 10.0;
+constexpr double shift_decay = 3.0;
 
 // The forcing term of an inexact Newton iteration (Eisenstat and Walker 1996, SIAM J. Sci.
 // Comput. 17(1), choice 2): CG solves S d = -g only to |g + S d| <= eta |g|, with eta = 0.9
@@ -52,6 +65,7 @@ StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef
   double previous_norm = 0.0, rate = 0.0;
   double previous_gradient_norm = 0.0;
   bool local = false;  // the last line search took the full step
+  double shift = 0.0;  // Levenberg-Marquardt shift of A in the local phase, in units of M
   while (result.iterations < stop.max_iterations) {
     ++result.iterations;
     if (result.iterations > 1) m_potential.freeze_damping(z);
@@ -63,14 +77,7 @@ StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef
     double slope = 0.0;
     bool exact = false;
     const double gradient_norm = m_gradient.norm();
-    if (local) {
-      ++result.setups;
-      if (m_exact.factorize(z.head(n3), z.tail(n3), gamma)) {
-        m_exact.newton_direction(m_gradient, m_direction);
-        slope = m_gradient.dot(m_direction);
-        exact = slope < 0.0;
-      }
-    }
+    if (local) exact = shifted_exact_direction(z, gamma, shift, slope, result);
     if (exact) {
       m_step.tail(n3) = m_direction;
     } else {
@@ -122,8 +129,30 @@ StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef
       return result;
     }
     local = result.backtracks == backtracks;
+    if (exact)
+      shift = !local                            ? std::max(min_shift, shift * shift_growth)
+              : shift / shift_decay < min_shift ? 0.0
+                                                : shift / shift_decay;
   }
   return result;
+}
+
+bool LineSearchNewton::shifted_exact_direction(ConstVecRef z, double gamma, double& shift,
+                                               double& slope, StageSolve& result) {
+  const Eigen::Index n3 = z.size() / 2;
+  for (;;) {
+    ++result.setups;
+    if (m_exact.factorize(z.head(n3), z.tail(n3), gamma, shift)) {
+      m_exact.newton_direction(m_gradient, m_direction);
+      slope = m_gradient.dot(m_direction);
+      if (slope < 0.0) {
+        if (shift > 0.0) ++result.shifted_directions;
+        return true;
+      }
+    }
+    if (shift >= max_shift) return false;
+    shift = std::max(min_shift, shift * shift_growth);
+  }
 }
 
 bool LineSearchNewton::line_search(VecRef z, double slope, StageSolve& result) {

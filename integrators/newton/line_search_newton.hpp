@@ -6,9 +6,13 @@
 // definite Hessian S (descent, S positive definite; CG solves S only to Eisenstat and Walker's
 // forcing term, an inexact Newton, as any CG iterate descends) and halves the step until Armijo's
 // condition E_k(v + alpha d) <= E_k(v) + 1e-4 alpha g.d holds. Once a full step was accepted,
-// the exact stage Jacobian's direction (ExactStageJacobian) replaces d whenever it descends:
-// quadratic convergence near the solution, where S alone converged linearly or, at 100x
-// stiffness, cycled. The stage is solved when the update's weighted RMS norm (ARKODE's error
+// the exact stage Jacobian's direction (ExactStageJacobian) replaces d: quadratic convergence
+// near the solution, where S alone converged linearly or, at 100x stiffness, cycled. Where A
+// is indefinite (compressed springs, the bending-free sheet buckling) its direction need not
+// descend; there A + shift M is factorised instead, the shift of Levenberg and Marquardt grown
+// until the direction descends (a trust-region step that follows A's negative curvature, where
+// S treats it as zero curvature and creeps: docs/integrators.md, "What the failing stages look
+// like"). The stage is solved when the update's weighted RMS norm (ARKODE's error
 // weights) times rate / (1 - rate), the error it leaves at the observed rate, is at most
 // `tolerance` (ARKODE's test, arkStep_NlsConvTest, with that factor for min(rate, 1)).
 #include <Eigen/Core>
@@ -30,6 +34,9 @@ struct StageSolve {
   long backtracks = 0;  ///< step halvings of the line search
   long rhs_evals = 0;   ///< force evaluations (gradients and the fixed rows)
   long setups = 0;      ///< Hessian evaluations
+  /// Directions from A + shift M with a positive Levenberg-Marquardt shift (A's own did not
+  /// descend, or the last one needed backtracking).
+  int shifted_directions = 0;
 };
 
 /// How a stage solve stops.
@@ -51,6 +58,11 @@ class LineSearchNewton {
   const IncrementalPotential& potential() const { return m_potential; }
 
  private:
+  /// The direction d = -(A + shift M)^-1 g in m_direction and its slope g.d, with the smallest
+  /// shift from `shift` up (tenfold steps) that makes it descend on E_k; `shift` receives it.
+  /// False when even the largest shift gives no descent (then S takes over).
+  bool shifted_exact_direction(ConstVecRef z, double gamma, double& shift, double& slope,
+                               StageSolve& result);
   /// Armijo backtracking from z along d; false when 30 halvings found no decrease.
   bool line_search(VecRef z, double slope, StageSolve& result);
 

@@ -62,5 +62,31 @@ TEST(LineSearchNewton, LineSearchNeverIncreasesTheMerit) {
   EXPECT_GT(backtracks, 0);  // the hard step needs the line search
 }
 
+// A stage from a buckled state: the stiff sheet compressed by 10 % in its plane and shaken out of
+// it. The compressed springs' negative transverse stiffness makes the exact stage Jacobian A
+// indefinite, so that its Newton direction need not descend on E_k, or overshoots; the
+// Levenberg-Marquardt shift (line_search_newton.cpp) keeps the local phase on A's directions.
+TEST(LineSearchNewton, SolvesAStageWhoseJacobianIsIndefinite) {
+  HardStep step;
+  const Eigen::Index n3 = step.a.size() / 2, n = n3 / 3;
+  Eigen::VectorXd x = step.a.head(n3);
+  Vec3 centre = Vec3::Zero();
+  for (Eigen::Index i = 0; i < n; ++i) centre += x.segment<3>(3 * i) / static_cast<double>(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    x.segment<3>(3 * i) = centre + 0.9 * (x.segment<3>(3 * i) - centre);
+  step.a.head(n3) = testing::jitter(x, 2e-4, 7);
+  step.system->constraints().project(0.0, VecMap(step.a.data(), n3),
+                                     VecMap(step.a.data() + n3, n3));
+  Eigen::VectorXd z;
+  const StageSolve result = step.solve(z, 200);
+  ASSERT_TRUE(result.converged) << result.iterations << " iterations";
+  // The case the shift exists for (92 of 131 directions were shifted when this was written).
+  EXPECT_GT(result.shifted_directions, 0);
+  Eigen::VectorXd f(z.size());
+  step.system->rhs(step.gamma, z, f);
+  const Eigen::VectorXd residual = z - step.a - step.gamma * f;
+  EXPECT_LT(residual.lpNorm<Eigen::Infinity>(), 1e-5 * (step.gamma * f).lpNorm<Eigen::Infinity>());
+}
+
 }  // namespace
 }  // namespace drape
