@@ -26,8 +26,8 @@ constexpr double max_forcing = 1e-2;
 // convergence, and after a backtracked step it grows tenfold. |M^-1 A| is of the order of 8
 // gamma^2 k / m (the stencil's neighbours), about 1e6 for the 64 x 64 sheet at 100x stiffness
 // and 1/30 s; while it is below `max_shift` / 3, the direction of A + max_shift M is within
-// 50 % of -g / (max_shift m) and descends, so the definite S remains the fallback for a
-// singular factorisation.
+// 50 % of -g / (max_shift m) and descends. A singular factorisation grows the shift too, so S
+// is a fallback the loop reaches only beyond that (at most 12 factorisations an iteration).
 constexpr double min_shift = 1e-3;
 constexpr double max_shift = 1e8;
 constexpr double shift_growth = 10.0;

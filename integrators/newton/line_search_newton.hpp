@@ -59,8 +59,8 @@ class LineSearchNewton {
 
  private:
   /// The direction d = -(A + shift M)^-1 g in m_direction and its slope g.d, with the smallest
-  /// shift from `shift` up (tenfold steps) that makes it descend on E_k; `shift` receives it.
-  /// False when even the largest shift gives no descent (then S takes over).
+  /// shift from `shift` up (tenfold steps) whose factorisation succeeds and whose direction
+  /// descends on E_k; `shift` receives it. False when even the largest shift does not.
   bool shifted_exact_direction(ConstVecRef z, double gamma, double& shift, double& slope,
                                StageSolve& result);
   /// Armijo backtracking from z along d; false when 30 halvings found no decrease.
