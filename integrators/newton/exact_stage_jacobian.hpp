@@ -22,6 +22,12 @@ namespace drape {
 
 /// Factorises the exact stage Jacobian A, optionally shifted by a multiple of M, and solves
 /// (A + shift M) d = -g.
+///
+/// A is written in place into a matrix whose pattern is the spring graph's 3x3 blocks (full
+/// blocks, explicit zeros kept), built once per fixed set: a Newton iteration then streams the
+/// flat Jacobian blocks into the values (no triplets, no sparse temporaries), and UMFPACK's
+/// symbolic analysis is redone only when the fixed set changes (an entry that happens to be
+/// zero, as on an axis-aligned sheet, does not change the pattern).
 class ExactStageJacobian {
  public:
   ExactStageJacobian(const ClothSystem& system, ForceSplit split);
@@ -33,14 +39,26 @@ class ExactStageJacobian {
   void newton_direction(const Eigen::VectorXd& g, Eigen::VectorXd& d);
 
  private:
-  /// True when m_a has the pattern of the last symbolic analysis.
-  bool same_pattern() const;
+  /// Where a 3x3 block's three columns start in m_a's values (its rows are contiguous in
+  /// each column); offset[0] < 0 for a block outside the pattern (a fixed particle's coupling).
+  struct BlockSlot {
+    int offset[3];
+  };
+  /// Builds m_a's pattern and the slots for the current fixed set.
+  void build_pattern();
+  BlockSlot slot_of(int row, int col) const;
+  /// Adds `scale` times `block` to the block at `slot` (nothing outside the pattern).
+  void add_block(const BlockSlot& slot, double scale, const Mat3& block);
 
   const ClothSystem& m_system;
   ForceSplit m_split;
-  Eigen::SparseMatrix<double> m_dfdx, m_dfdv, m_a;
+  JacobianBlocks m_blocks;
+  Eigen::SparseMatrix<double> m_a;
+  std::vector<unsigned char> m_fixed;  // the fixed set m_a's pattern was built for
+  std::vector<BlockSlot> m_diagonal;   // one per particle
+  std::vector<BlockSlot> m_spring;     // four per spring: (i, i), (i, j), (j, i), (j, j)
+  bool m_analysed = false;
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> m_lu;
-  std::vector<int> m_outer, m_inner;  // the analysed pattern of m_a
   Eigen::VectorXd m_rhs;  // -g: UmfPackLU solves a stored vector, not an expression
 };
 
