@@ -4,6 +4,8 @@
 // and without the Levenberg-Marquardt shift.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "integrators/newton/exact_stage_jacobian.hpp"
 #include "integrators/newton/incremental_potential.hpp"
 #include "tests/support/swinging_sheet.hpp"
@@ -48,6 +50,24 @@ TEST(ExactStageJacobian, NewtonDirectionSolvesTheLinearisedStage) {
     auto system = testing::pinned_test_cloth(0.05, 0.01);
     ExactStageJacobian jacobian(*system, split);
     // One object for both shifts: the second factorisation reuses the first one's pattern.
+    for (const double shift : {0.0, 0.7})
+      expect_direction_solves_linearised_stage(jacobian, *system, split, shift);
+  }
+}
+
+TEST(ExactStageJacobian, NewtonDirectionSolvesTheLinearisedStageInContact) {
+  // The particle blocks (the smooth contact's Hessian, air damping) enter A's diagonal blocks:
+  // a cloth against a sphere, with the contact in the implicit part or in all of it.
+  auto system = testing::cloth_against_sphere(CollisionModel::smooth);
+  JacobianBlocks blocks;
+  const Eigen::VectorXd y = testing::jitter(system->initial_state(0.0), 0.004, 3);
+  const Eigen::Index n3 = y.size() / 2;
+  system->force_jacobian_blocks(y.head(n3), y.tail(n3), false, ForceSplit::all, blocks);
+  const auto in_contact = std::count_if(blocks.particle_x.begin(), blocks.particle_x.end(),
+                                        [](const Mat3& b) { return !b.isZero(); });
+  ASSERT_GT(in_contact, 0) << "the test cloth must touch the sphere";
+  for (const ForceSplit split : {ForceSplit::all, ForceSplit::springs_and_collision}) {
+    ExactStageJacobian jacobian(*system, split);
     for (const double shift : {0.0, 0.7})
       expect_direction_solves_linearised_stage(jacobian, *system, split, shift);
   }
