@@ -23,7 +23,7 @@ struct IntegratorOptions {
   /// Newton iterations per stage before a failure; 0 = max_newton_iters_of()'s default.
   int max_newton_iters = 0;
   /// arkode-dirk and arkode-imex: how stages are solved, `line-search` (Newton on the incremental
-  /// potential with a line search, docs/integrators.md) or `newton` (ARKODE's); "" = newton.
+  /// potential with a line search, docs/integrators.md) or `newton` (ARKODE's); "" = line-search.
   std::string nonlinear_solver;
   /// arkode-imex: which forces the implicit part f_I holds, `springs` (elastic and spring
   /// damping; the collision force explicit) or `springs+collision` (the contact implicit too);

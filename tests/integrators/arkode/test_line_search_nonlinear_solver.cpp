@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "integrators/arkode/arkode_stepper.hpp"
+#include "integrators/interface/integrator_options.hpp"
 #include "integrators/interface/registry.hpp"
 #include "tests/support/swinging_sheet.hpp"
 
@@ -181,6 +182,35 @@ TEST(LineSearchNonlinearSolver, CountsBacktracksAndSkipsArkodesLinearSolver) {
   EXPECT_GT(c.linear_iters, 0);  // the CG iterations of the Hessian solves
   EXPECT_GT(c.jacobian_setups, 0);
   EXPECT_EQ(c.to_json().at("line_search_backtracks"), c.line_search_backtracks);
+}
+
+// The line search is the default stage solver of arkode-dirk and arkode-imex (issue #13), with a
+// bound of 400 iterations a stage; `newton` keeps ARKODE's, with its bound of 10.
+TEST(LineSearchNonlinearSolver, IsTheDefaultOfTheNewtonIntegrators) {
+  for (const char* name : {"arkode-dirk", "arkode-imex"}) {
+    IntegratorOptions o;
+    o.name = name;
+    o.dt = 1.0 / 30.0;
+    EXPECT_TRUE(uses_line_search(o)) << name;
+    EXPECT_EQ(max_newton_iters_of(o), 400) << name;
+    EXPECT_EQ(to_json(o).at("nonlinear_solver"), "line-search") << name;
+    o.nonlinear_solver = "newton";
+    EXPECT_FALSE(uses_line_search(o)) << name;
+    EXPECT_EQ(max_newton_iters_of(o), 10) << name;
+    EXPECT_EQ(to_json(o).at("nonlinear_solver"), "newton") << name;
+  }
+  // A run with nothing said takes the line search's steps: it backtracks, and it takes the
+  // stiff sheet's 1/30 s steps without a halving, as the explicit choice does.
+  auto s = testing::swinging_sheet(100.0);
+  IntegratorOptions o;
+  o.name = "arkode-dirk";
+  o.table = "ARKODE_SDIRK_2_1_2";
+  o.dt = 1.0 / 30.0;
+  validate_integrator_choice(o, "test", "integrator");
+  IntegratorCounters c;
+  run(*s, o, s->initial_state(0.0), 0.2, &c);
+  EXPECT_GT(c.line_search_backtracks, 0);
+  EXPECT_EQ(c.step_halvings, 0);
 }
 
 }  // namespace
