@@ -85,9 +85,11 @@ std::vector<SheetCase> implicit_tables() {
         "ARK548L2SAb_DIRK_8_4_5", "ESDIRK324L2SA_4_2_3", "ESDIRK325L2SA_5_2_3",
         "ESDIRK32I5L2SA_5_2_3", "ESDIRK436L2SA_6_3_4", "ESDIRK43I6L2SA_6_3_4"})
     cases.push_back({"arkode-dirk", table});
-  // IMEX pairs (the springs implicit): ARK324L2SA_4_2_3 halves one step (a stage whose root is
-  // a saddle of the potential), ARK437L2SA_7_3_4 and ARK548L2SA_8_4_5 gain energy.
-  for (const char* pair : {"ARK436L2SA_6_3_4", "ARK548L2SAb_8_4_5"})
+  // IMEX pairs (the springs implicit): ARK437L2SA_7_3_4 and ARK548L2SA_8_4_5 gain energy.
+  // ARK324L2SA_4_2_3 halved one step in the measurement of docs/integrators.md (a stage sliding
+  // along a saddle of the potential), made before the Levenberg-Marquardt shift; it passes since
+  // (at the bounds of 100 and 400 alike).
+  for (const char* pair : {"ARK324L2SA_4_2_3", "ARK436L2SA_6_3_4", "ARK548L2SAb_8_4_5"})
     cases.push_back({"arkode-imex", pair});
   return cases;
 }
@@ -120,11 +122,15 @@ TEST(LineSearchNonlinearSolver, SwingingSheetAtOneThirtiethSecond) {
 
 // At 100x stiffness, the tables measured with no failure there (docs/integrators.md) that
 // finish in seconds; the stages take 2-5 times the iterations of the shipped stiffness.
+// ARK436L2SA_DIRK and ESDIRK32I5L2SA halved one step each in that measurement, made before the
+// Levenberg-Marquardt shift; they pass since (at the bounds of 100 and 400 alike).
 TEST(LineSearchNonlinearSolver, StiffSwingingSheetAtOneThirtiethSecond) {
   expect_sheet_runs(100.0, {{"arkode-dirk", "SDIRK_2_1_2"},
                             {"arkode-dirk", "TRBDF2_3_3_2"},
                             {"arkode-dirk", "KVAERNO_4_2_3"},
-                            {"arkode-dirk", "CASH_5_3_4"}});
+                            {"arkode-dirk", "CASH_5_3_4"},
+                            {"arkode-dirk", "ARK436L2SA_DIRK_6_3_4"},
+                            {"arkode-dirk", "ESDIRK32I5L2SA_5_2_3"}});
 }
 
 // Long damped runs settle where the sheet's forces balance: zero velocity and zero force on
