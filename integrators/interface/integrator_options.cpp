@@ -109,13 +109,17 @@ std::string linear_solver_of(const IntegratorOptions& options) {
   return options.name == "implicit-euler" ? "pcg-multigrid" : "pcg-reduced";
 }
 
-bool uses_line_search(const IntegratorOptions& options) {
-  if (options.name == "implicit-euler") return options.solve == "converged";
+std::string nonlinear_solver_of(const IntegratorOptions& options) {
+  if (options.name != "arkode-dirk" && options.name != "arkode-imex") return "";
   // The line search is the default of the two Newton integrators (issue 13; docs/integrators.md,
   // "Default"): ARKODE's Newton rejects the first, growing iterations of a large step and has it
   // halved. `newton` stays selectable.
-  const bool newton = options.name == "arkode-dirk" || options.name == "arkode-imex";
-  return newton && options.nonlinear_solver != "newton";
+  return options.nonlinear_solver.empty() ? "line-search" : options.nonlinear_solver;
+}
+
+bool uses_line_search(const IntegratorOptions& options) {
+  if (options.name == "implicit-euler") return options.solve == "converged";
+  return nonlinear_solver_of(options) == "line-search";
 }
 
 int max_newton_iters_of(const IntegratorOptions& options) {
@@ -144,9 +148,7 @@ nlohmann::json to_json(const IntegratorOptions& o) {
           {"max_dt", o.max_dt},
           {"linear_solver", o.linear_solver},
           {"max_newton_iters", max_newton_iters_of(o)},
-          // The solver that runs, not the key's empty default.
-          {"nonlinear_solver", uses_line_search(o) && o.name != "implicit-euler" ? "line-search"
-                                                                                 : o.nonlinear_solver},
+          {"nonlinear_solver", nonlinear_solver_of(o)},
           {"solve", o.solve},
           {"imex_split", o.imex_split},
           {"max_step_halvings", o.max_step_halvings},

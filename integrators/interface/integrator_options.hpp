@@ -51,11 +51,14 @@ double default_linear_tolerance(const std::string& name);
 /// `linear_tolerance`, or the integrator's default when it is 0.
 double linear_tolerance_of(const IntegratorOptions& options);
 
+/// arkode-dirk and arkode-imex: `nonlinear_solver`, or `line-search` when it is empty; "" for
+/// the other integrators (which reject the key).
+std::string nonlinear_solver_of(const IntegratorOptions& options);
 /// Whether the run solves its stages with the line-search Newton (arkode-dirk and arkode-imex
 /// by default, implicit-euler with solve = converged).
 bool uses_line_search(const IntegratorOptions& options);
-/// `max_newton_iters`, or when 0: 10 for ARKODE's Newton, 100 for the line-search Newton (it
-/// needed 19-55 iterations on a stiff sheet at 1/30 s, docs/integrators.md).
+/// `max_newton_iters`, or when 0: 10 for ARKODE's Newton, 400 for the line-search Newton
+/// (docs/integrators.md, "The iteration bound").
 int max_newton_iters_of(const IntegratorOptions& options);
 
 /// Reads and validates an `integrator` object; errors name `file` and `path.key`.
