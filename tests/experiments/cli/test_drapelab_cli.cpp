@@ -109,6 +109,14 @@ TEST(DrapelabRun, SetOverridesAreValidatedLikeTheFile) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("integrator.max_step_halvings: must be between 0 and 30"), std::string::npos)
       << r.err;
+  // The stage solver, now defaulted to the line search: a name it does not know is refused.
+  r = drapelab("run " + scene.string() +
+               " --out /tmp/unused --set integrator.name=arkode-dirk --set integrator.nonlinear_solver=bfgs");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(scene.string() +
+                       ": integrator.nonlinear_solver: unknown nonlinear solver 'bfgs'"),
+            std::string::npos)
+      << r.err;
 }
 
 TEST(DrapelabRun, MissingFileAndBadUsageExitWithTwo) {
