@@ -47,7 +47,7 @@ const std::vector<IntegratorInfo>& integrators() {
       {"arkode-erk", "explicit", 3, true,
        "ARKODE ARKStep explicit Runge-Kutta, any ERK table (default Bogacki-Shampine 3(2))"},
       {"arkode-dirk", "implicit", 3, true,
-       "ARKODE ARKStep diagonally implicit Runge-Kutta, any DIRK table (default ARK324L2SA)"},
+       "ARKODE ARKStep diagonally implicit Runge-Kutta, any DIRK table (default KVAERNO_4_2_3)"},
       {"arkode-imex", "imex", 3, true,
        "ARKODE ARKStep IMEX: springs implicit, gravity, air and collision explicit"},
   };

@@ -131,6 +131,24 @@ TEST(TableStability, ImplicitInverseNormSeparatesTheTablesThatGainEnergy) {
     EXPECT_LT(table_stability(arkode_dirk(name)).implicit_inverse_norm, threshold) << name;
 }
 
+TEST(TableStability, TheDefaultDirkTableIsOneThatSettles) {
+  // arkode-dirk's default must take 1/30 s steps in contact without adding energy
+  // (docs/integrators.md, "Default table"): a table that settles on the swinging sheet, below
+  // the |A_I^-1| threshold, L-stable and stiffly accurate (b is A's last row, so a stiff mode
+  // left in the last stage is not carried into the step), of order 3 with an order-2 embedding
+  // for adaptive runs.
+  const std::string name =
+      default_arkode_table(ArkodeKind::diagonally_implicit).substr(std::string("ARKODE_").size());
+  EXPECT_NE(std::find(settle.begin(), settle.end(), name), settle.end()) << name;
+  const ButcherTableau t = arkode_dirk(name);
+  EXPECT_EQ(t.q, 3);
+  EXPECT_EQ(t.p, 2);
+  for (std::size_t j = 0; j < t.b.size(); ++j) EXPECT_DOUBLE_EQ(t.b[j], t.A.back()[j]) << j;
+  const TableStability s = table_stability(t);
+  EXPECT_NEAR(s.stiff_limit, 0.0, 1e-10);
+  EXPECT_LT(s.implicit_inverse_norm, 100.0);
+}
+
 TEST(TableStability, LinearAndAlgebraicMeasuresDoNotSeparateThem) {
   // Every ARKODE DIRK table is A-stable. Of the 14 that settle only SDIRK_2_1_2 is algebraically
   // stable, and KVAERNO_4_2_3 settles with a more negative eigenvalue of M (-3.7) than
