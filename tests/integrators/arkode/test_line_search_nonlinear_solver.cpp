@@ -3,6 +3,8 @@
 // stiffness and at 100x.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <chrono>
 
 #include "integrators/arkode/arkode_stepper.hpp"
@@ -120,17 +122,21 @@ TEST(LineSearchNonlinearSolver, SwingingSheetAtOneThirtiethSecond) {
   expect_sheet_runs(1.0, implicit_tables());
 }
 
-// At 100x stiffness, the tables measured with no failure there (docs/integrators.md) that
-// finish in seconds; the stages take 2-5 times the iterations of the shipped stiffness.
-// ARK436L2SA_DIRK and ESDIRK32I5L2SA halved one step each in that measurement, made before the
-// Levenberg-Marquardt shift; they pass since (at the bounds of 100 and 400 alike).
+// At 100x stiffness, every table and pair of the shipped stiffness's list except the two that
+// gain energy at 100x only (BILLINGTON_3_3_2 and KVAERNO_7_4_5, docs/integrators.md, "Which
+// tables gain energy at large steps"); the stages take 2-5 times the iterations of the
+// shipped stiffness. ARK436L2SA_DIRK and ESDIRK32I5L2SA halved one step each in the
+// measurement of docs/integrators.md, made before the Levenberg-Marquardt shift; they pass
+// since (at the bounds of 100 and 400 alike).
 TEST(LineSearchNonlinearSolver, StiffSwingingSheetAtOneThirtiethSecond) {
-  expect_sheet_runs(100.0, {{"arkode-dirk", "SDIRK_2_1_2"},
-                            {"arkode-dirk", "TRBDF2_3_3_2"},
-                            {"arkode-dirk", "KVAERNO_4_2_3"},
-                            {"arkode-dirk", "CASH_5_3_4"},
-                            {"arkode-dirk", "ARK436L2SA_DIRK_6_3_4"},
-                            {"arkode-dirk", "ESDIRK32I5L2SA_5_2_3"}});
+  std::vector<SheetCase> cases = implicit_tables();
+  cases.erase(std::remove_if(cases.begin(), cases.end(),
+                             [](const SheetCase& c) {
+                               return std::string(c.table) == "BILLINGTON_3_3_2" ||
+                                      std::string(c.table) == "KVAERNO_7_4_5";
+                             }),
+              cases.end());
+  expect_sheet_runs(100.0, cases);
 }
 
 // Long damped runs settle where the sheet's forces balance: zero velocity and zero force on
