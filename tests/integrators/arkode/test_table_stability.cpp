@@ -149,6 +149,27 @@ TEST(TableStability, TheDefaultDirkTableIsOneThatSettles) {
   EXPECT_LT(s.implicit_inverse_norm, 100.0);
 }
 
+TEST(TableStability, Kvaerno423AndArk324DirkShareTheirStabilityFunction) {
+  // In contact at 1/30 s ARK324L2SA_DIRK gains energy and KVAERNO_4_2_3 settles
+  // (docs/integrators.md, "Default table"), yet no linear measure can tell them apart: both
+  // are L-stable ESDIRKs of order 3 with three implicit stages of the same diagonal gamma, so
+  // R(z) = P(z) / (1 - gamma z)^3 with P of degree 2 is fixed by the order conditions. Equal
+  // on the imaginary axis, on the negative real axis and on the positive real axis (the
+  // growth modes of compressed, buckling springs); what differs is the stages (c_3 = 0.6
+  // against 1: a nonlinear, not a linear, property). ARKODE gives Kvaerno's coefficients to 10
+  // digits (gamma = 0.4358665215, ARK324L2SA's to 16), hence the tolerances.
+  const ButcherTableau ark = arkode_dirk("ARK324L2SA_DIRK_4_2_3");
+  const ButcherTableau kvaerno = arkode_dirk("KVAERNO_4_2_3");
+  EXPECT_NEAR(ark.A[1][1], kvaerno.A[1][1], 1e-10);
+  for (const std::complex<double> z : {std::complex<double>{-1e3, 0.0}, {-3.0, 0.0}, {0.0, 25.0},
+                                       {-1.0, 4.0}, {1.0, 0.0}, {10.0, 0.0}, {30.0, 0.0}})
+    EXPECT_NEAR(std::abs(stability_function(ark, z) - stability_function(kvaerno, z)), 0.0,
+                1e-9 * std::max(1.0, std::abs(stability_function(ark, z))))
+        << z;
+  EXPECT_NEAR(ark.c[2], 0.6, 1e-15);
+  EXPECT_NEAR(kvaerno.c[2], 1.0, 1e-15);
+}
+
 TEST(TableStability, LinearAndAlgebraicMeasuresDoNotSeparateThem) {
   // Every ARKODE DIRK table is A-stable. Of the 14 that settle only SDIRK_2_1_2 is algebraically
   // stable, and KVAERNO_4_2_3 settles with a more negative eigenvalue of M (-3.7) than
