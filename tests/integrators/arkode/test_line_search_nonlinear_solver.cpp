@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
 #include <chrono>
 
 #include "integrators/arkode/arkode_stepper.hpp"

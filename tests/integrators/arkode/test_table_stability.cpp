@@ -134,9 +134,9 @@ TEST(TableStability, ImplicitInverseNormSeparatesTheTablesThatGainEnergy) {
 TEST(TableStability, TheDefaultDirkTableIsOneThatSettles) {
   // arkode-dirk's default must take 1/30 s steps in contact without adding energy
   // (docs/integrators.md, "Default table"): a table that settles on the swinging sheet, below
-  // the |A_I^-1| threshold, L-stable and stiffly accurate (b is A's last row, so a stiff mode
-  // left in the last stage is not carried into the step), of order 3 with an order-2 embedding
-  // for adaptive runs.
+  // the |A_I^-1| threshold, L-stable and stiffly accurate (b is A's last row: the step is its
+  // last stage, an implicit solve, and damps stiff modes as that stage does), of order 3 with
+  // an order-2 embedding for adaptive runs.
   const std::string name =
       default_arkode_table(ArkodeKind::diagonally_implicit).substr(std::string("ARKODE_").size());
   EXPECT_NE(std::find(settle.begin(), settle.end(), name), settle.end()) << name;
