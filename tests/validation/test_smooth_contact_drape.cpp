@@ -3,10 +3,11 @@
 // with its centre pinned above the pole, and hung from two pins against the dress form (the
 // shipped drape_dress_form scene); on the sphere also arkode-imex at 1/30 s with the contact
 // implicit, on the dress form also arkode-dirk on its defaults at 1/30 s (no halving). At the
-// end it is at rest, on the surface, and no particle is inside: every free particle's smooth gap is above the gap at which the contact force would
-// carry the whole cloth's weight. The contact has no friction (nor has the paper's), so a free
-// cloth on a sphere is an unstable equilibrium: implicit Euler's solves break the symmetry and
-// it slides off within 3 s; hence the pin.
+// end it is at rest, on the surface, and no particle is inside: every free particle's smooth
+// gap is above the gap at which the contact force would carry the whole cloth's weight. The
+// contact has no friction (nor has the paper's), so a free cloth on a sphere is an unstable
+// equilibrium: implicit Euler's solves break the symmetry and it slides off within 3 s; hence
+// the pin.
 #include <gtest/gtest.h>
 
 #include <cmath>
