@@ -1,7 +1,10 @@
 """Writes small synthetic run folders (docs/outputs.md) for the analysis tests, and makes
 analysis/drapeanalysis importable however the tests are started."""
 import json
+import math
 import sys
+import tempfile
+import unittest
 from pathlib import Path
 
 import numpy as np
@@ -140,3 +143,26 @@ def write_experiment(directory, scenes=("scenes/a.json", "scenes/b.json"), steps
         "name": "synthetic", "question": "q?", "metrics": [], "parameters": ["integrator.name", "integrator.dt"],
         "plan_size": len(runs), "columns": columns, "runs": runs}))
     return runs
+
+
+class RunFolderTest(unittest.TestCase):
+    """A fresh experiment folder per test, with run folders under runs/."""
+
+    def setUp(self):
+        self._tmp = tempfile.TemporaryDirectory()
+        self.directory = Path(self._tmp.name)
+
+    def tearDown(self):
+        self._tmp.cleanup()
+
+    def make_run(self, name="a"):
+        run = self.directory / "runs" / name
+        run.mkdir(parents=True)
+        return run
+
+    def row(self, name="a", **extra):
+        return {"id": name, "run_dir": f"runs/{name}", **extra}
+
+    def assertClose(self, actual, expected, rel=1e-9, abs_tol=0.0, msg=None):
+        self.assertTrue(math.isclose(actual, expected, rel_tol=rel, abs_tol=abs_tol),
+                        msg or f"{actual!r} != {expected!r} (rel {rel}, abs {abs_tol})")

@@ -6,7 +6,7 @@ import numpy as np
 
 import runfolder
 from drapeanalysis import metrics, runfiles
-from test_metrics import RunFolderTest
+from runfolder import RunFolderTest
 
 
 class EventTraceVibrationTest(RunFolderTest):

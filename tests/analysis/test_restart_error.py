@@ -4,7 +4,7 @@ horizons, and failed branches counted and left out."""
 import math
 
 from drapeanalysis import metrics, plots
-from test_metrics import RunFolderTest
+from runfolder import RunFolderTest
 
 HEADER = "t,events,horizon,status,error_rms,error_max,reference_motion_rms\n"
 ROWS = [

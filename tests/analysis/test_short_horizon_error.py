@@ -6,7 +6,7 @@ import numpy as np
 
 import runfolder
 from drapeanalysis import metrics
-from test_metrics import RunFolderTest
+from runfolder import RunFolderTest
 
 RATE = 1000.0  # event-trace frames a second
 DRIFT = 0.01   # m/s: particle 0 of the reference moves away at this speed; particle 1 agrees

@@ -1,0 +1,196 @@
+// Experiment definitions and plans: sweeps, cases, run ids, references, shards and the
+// errors of a broken definition (docs/experiments.md).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "tests/experiments/sweep/experiment_fixtures.hpp"
+
+namespace {
+
+using namespace drape::experiment_fixtures;
+
+TEST(ExperimentPlan, SweepIsTheCartesianProductAndCasesMultiplyIt) {
+  const fs::path dir = temp_dir("plan");
+  write_scene(dir);
+  auto plan = drape::expand_runs(parse(two_by_three(), dir));
+  ASSERT_EQ(plan.size(), 6u);
+  std::set<std::pair<std::string, double>> combos;
+  for (std::size_t k = 0; k < plan.size(); ++k) {
+    EXPECT_EQ(plan[k].index, static_cast<int>(k));
+    ASSERT_EQ(plan[k].parameters.size(), 2u);
+    combos.insert({plan[k].parameters[1].second.get<std::string>(),
+                   plan[k].parameters[0].second.get<double>()});
+  }
+  EXPECT_EQ(combos.size(), 6u);
+
+  json with_cases = two_by_three();
+  with_cases["sweep"].erase("integrator.name");
+  with_cases["cases"] = json::parse(R"([{"integrator.name": "leapfrog"},
+      {"integrator.name": "symplectic-euler", "cloth.damping_spring": 0.01}])");
+  plan = drape::expand_runs(parse(with_cases, dir));
+  ASSERT_EQ(plan.size(), 6u);
+  EXPECT_EQ(plan[5].parameters.size(), 3u);
+  EXPECT_EQ(plan[5].assignments().back(), "integrator.dt=0.0025");
+}
+
+TEST(ExperimentPlan, RunIdsAreStableUniqueAndIndependentOfPlanPosition) {
+  const fs::path dir = temp_dir("ids");
+  write_scene(dir);
+  const auto plan = drape::expand_runs(parse(two_by_three(), dir));
+  std::set<std::string> ids;
+  for (const auto& run : plan) ids.insert(run.id);
+  EXPECT_EQ(ids.size(), plan.size());
+  // The id of one run is a fixed function of its definition: pinned here so that a change to
+  // the hashing, which would orphan every finished folder, is deliberate.
+  EXPECT_EQ(plan[0].id, drape::run_id(plan[0]));
+  EXPECT_EQ(plan[0].id.rfind("cloth-0.001-leapfrog-", 0), 0u) << plan[0].id;
+
+  json more = two_by_three();
+  more["sweep"]["integrator.dt"] = json::array({0.0005, 0.001, 0.002, 0.0025});
+  const auto bigger = drape::expand_runs(parse(more, dir));
+  std::set<std::string> bigger_ids;
+  for (const auto& run : bigger) bigger_ids.insert(run.id);
+  for (const auto& id : ids) EXPECT_TRUE(bigger_ids.count(id)) << id;
+}
+
+TEST(ExperimentPlan, ReferenceRunsShareNonIntegratorValuesAndAreAppendedOnce) {
+  const fs::path dir = temp_dir("reference");
+  write_scene(dir);
+  json source = two_by_three();
+  source["sweep"]["cloth.damping_spring"] = json::array({0.0, 0.01});
+  source["reference"] = json::parse(R"({"integrator.name": "leapfrog", "integrator.dt": 0.0001})");
+  const auto plan = drape::expand_runs(parse(source, dir));
+  ASSERT_EQ(plan.size(), 12u + 2u);  // one reference per damping value
+  for (int k = 0; k < 12; ++k) {
+    ASSERT_FALSE(plan[k].reference.empty());
+    const auto& ref = *std::find_if(plan.begin(), plan.end(),
+                                    [&](const auto& r) { return r.id == plan[k].reference; });
+    EXPECT_TRUE(ref.is_reference);
+    EXPECT_EQ(ref.parameters.front(), plan[k].parameters.front());  // the damping value
+  }
+}
+
+TEST(ExperimentPlan, RestartErrorGivesEveryRunItsReferencesIntegrator) {
+  const fs::path dir = temp_dir("restart_error");
+  write_scene(dir);
+  json source = two_by_three();
+  source["set"] = json::parse(R"({"integrator.max_steps": 100000})");
+  source["reference"] = json::parse(R"({"integrator.dt": 0.0001})");
+  source["restart_error"] = json::parse(R"({"horizons": [0.02, 0.04]})");
+  const auto plan = drape::expand_runs(parse(source, dir));
+  ASSERT_EQ(plan.size(), 6u + 1u);
+  for (const auto& run : plan) {
+    const auto restart = std::find_if(run.overrides.begin(), run.overrides.end(),
+                                      [](const auto& o) { return o.first == "restart_error"; });
+    if (run.is_reference) {
+      EXPECT_EQ(restart, run.overrides.end());
+      continue;
+    }
+    ASSERT_NE(restart, run.overrides.end()) << run.id;
+    // The reference run's integrator as its scene reads it: the scene's method, the experiment's
+    // set and the reference's values (not the run's own integrator values).
+    EXPECT_EQ(restart->second["reference"],
+              json::parse(R"({"name": "leapfrog", "dt": 0.0001, "max_steps": 100000})"));
+    EXPECT_EQ(restart->second["horizons"], json::parse("[0.02, 0.04]"));
+  }
+  json no_reference = two_by_three();
+  no_reference["restart_error"] = json::parse(R"({"horizons": [0.02]})");
+  EXPECT_EQ(error_field(no_reference, dir), "restart_error");
+  source["restart_error"] = json::parse(R"({"horizons": [0.02], "every": 1})");
+  EXPECT_EQ(error_field(source, dir), "restart_error.every");
+}
+
+TEST(ExperimentPlan, ShardsPartitionThePlanExactlyOnce) {
+  for (int n = 1; n <= 7; ++n) {
+    std::vector<int> seen(20, 0);
+    for (int k = 1; k <= n; ++k)
+      for (int i = 0; i < 20; ++i) seen[i] += drape::Shard{k, n}.contains(i);
+    for (int i = 0; i < 20; ++i) EXPECT_EQ(seen[i], 1) << "run " << i << " of " << n << " shards";
+  }
+  EXPECT_EQ(drape::parse_shard("3/8").index, 3);
+  EXPECT_EQ(drape::parse_shard("3/8").count, 8);
+  for (const char* bad : {"0/3", "4/3", "3", "a/b", "1/0", "1/2x"})
+    EXPECT_THROW(drape::parse_shard(bad), InputError) << bad;
+}
+
+// `cases` may name a file beside the definition holding {"cases": [...]}: the same plan as the
+// list inline; its errors name that file, a missing one the definition's field.
+TEST(ExperimentFile, CasesFromASharedFileAreTheInlineCases) {
+  const fs::path dir = temp_dir("cases_file");
+  write_scene(dir);
+  const json list = json::parse(R"([{"integrator.name": "leapfrog"},
+      {"integrator.name": "symplectic-euler", "cloth.damping_spring": 0.01}])");
+  json inline_cases = two_by_three();
+  inline_cases["sweep"].erase("integrator.name");
+  inline_cases["cases"] = list;
+  fs::create_directories(dir / "cases");
+  std::ofstream(dir / "cases" / "two.json") << json{{"cases", list}}.dump();
+  json shared = inline_cases;
+  shared["cases"] = "cases/two.json";
+  const auto expected = drape::expand_runs(parse(inline_cases, dir));
+  const auto plan = drape::expand_runs(parse(shared, dir));
+  ASSERT_EQ(plan.size(), 6u);
+  for (std::size_t k = 0; k < plan.size(); ++k) {
+    EXPECT_EQ(plan[k].assignments(), expected[k].assignments());
+    EXPECT_EQ(plan[k].id, expected[k].id);
+  }
+
+  for (const char* bad : {"cases/missing.json", "cases", "", "/etc/hostname"}) {
+    shared["cases"] = bad;
+    EXPECT_EQ(error_field(shared, dir), "cases") << bad;
+  }
+  shared["cases"] = 5;
+  EXPECT_EQ(error_field(shared, dir), "cases");
+  auto error_in = [&](const json& content) -> std::pair<std::string, std::string> {
+    std::ofstream(dir / "cases" / "bad.json") << content.dump();
+    json definition = inline_cases;
+    definition["cases"] = "cases/bad.json";
+    try {
+      parse(definition, dir);
+    } catch (const InputError& e) {
+      return {fs::path(e.file()).filename().string(), e.field()};
+    }
+    return {"", "<no error>"};
+  };
+  using Where = std::pair<std::string, std::string>;
+  EXPECT_EQ(error_in(json{{"cases", json::array({json{{"a..b", 1}}})}}), Where("bad.json", "cases[0].a..b"));
+  EXPECT_EQ(error_in(json{{"cases", list}, {"colour", 1}}), Where("bad.json", "colour"));
+  EXPECT_EQ(error_in(json{{"cases", json::array()}}), Where("bad.json", "cases"));
+  EXPECT_EQ(error_in(json::array()), Where("bad.json", ""));
+  EXPECT_EQ(error_in(json{{"cases", "two.json"}}), Where("bad.json", "cases"));
+  EXPECT_EQ(error_in(json{{"cases", json::array({1})}}), Where("bad.json", "cases[0]"));
+  // a clash with the definition's sweep (integrator.dt) is reported in the cases file
+  EXPECT_EQ(error_in(json{{"cases", json::array({json{{"integrator.dt", 0.01}}})}}),
+            Where("bad.json", "cases[0].integrator.dt"));
+}
+
+TEST(ExperimentFile, ErrorsNameTheField) {
+  const fs::path dir = temp_dir("errors");
+  write_scene(dir);
+  auto with = [](const char* key, json value) {
+    json j = two_by_three();
+    j[key] = std::move(value);
+    return j;
+  };
+  EXPECT_EQ(error_field(with("colour", 1), dir), "colour");
+  EXPECT_EQ(error_field(with("scenes", json::array({"missing.json"})), dir), "scenes[0]");
+  EXPECT_EQ(error_field(with("scenes", json::array()), dir), "scenes");
+  EXPECT_EQ(error_field(with("metrics", json::array({"energy_drift", "beauty"})), dir), "metrics[1]");
+  EXPECT_EQ(error_field(with("duration", -1), dir), "duration");
+  json empty_sweep = two_by_three();
+  empty_sweep["sweep"]["integrator.dt"] = json::array();
+  EXPECT_EQ(error_field(empty_sweep, dir), "sweep.integrator.dt");
+  json clash = two_by_three();
+  clash["cases"] = json::parse(R"([{"integrator.dt": 0.001}])");
+  EXPECT_EQ(error_field(clash, dir), "cases[0].integrator.dt");
+  json no_name = two_by_three();
+  no_name.erase("name");
+  EXPECT_EQ(error_field(no_name, dir), "name");
+  json bad_bisect = two_by_three();
+  bad_bisect["bisect"] = json::parse(R"({"low": 0.01, "high": 0.001})");
+  EXPECT_EQ(error_field(bad_bisect, dir), "bisect.high");
+}
+
+}  // namespace
