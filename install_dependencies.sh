@@ -7,6 +7,7 @@ packages=(cmake g++ make libeigen3-dev libsundials-dev nlohmann-json3-dev libgte
           libsuitesparse-dev libopenblas0-serial  # UMFPACK, and a fast BLAS under it
           python3-numpy python3-pandas python3-vtk9 ffmpeg parallel libjs-three chromium libcpp-httplib-dev
           chromium-driver python3-selenium  # the live page's browser check (Selenium)
+          python3-scipy  # MINPACK's fsolve for the independent DIRK reference (tests/validation)
           clang libclang-rt-dev)  # the sanitize and fuzz presets: clang, its sanitizer and libFuzzer runtimes
 missing=()
 for p in "${packages[@]}"; do
