@@ -11,7 +11,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 
 #include "core/scene/scene.hpp"
 #include "experiments/run/scene_simulation.hpp"
@@ -31,11 +30,8 @@ struct ChainRun {
 };
 
 ChainRun run_chain(const std::string& table) {
-  std::ifstream in(chain_scene);
-  nlohmann::json source = nlohmann::json::parse(in);
-  source["cloth"]["cols"] = 12;
-  source["integrator"]["table"] = table;
-  SceneSimulation run(parse_scene(source, chain_scene.string(), chain_scene.parent_path()));
+  SceneSimulation run(
+      load_scene(chain_scene.string(), {"cloth.cols=12", "integrator.table=" + table}));
   const ClothSystem& system = run.system();
   const int n = system.num_particles();
   const auto energy = [&] {
