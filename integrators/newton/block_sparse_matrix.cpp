@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <stdexcept>
 
 namespace drape::detail {
 
@@ -19,10 +20,12 @@ constexpr int cache_line = 64;
 
 // Inlined by force: GCC finds a function that only prefetches free of side effects and drops
 // its calls (it did here, unannounced, with a plain function).
-[[gnu::always_inline]] inline void prefetch_row(const BlockSparseMatrix& a, int row) {
+[[gnu::always_inline]] inline void prefetch_row(const BlockSparseMatrix& a,
+                                                 const Eigen::Matrix3f* blocks, int row) {
   if (row < 0 || row >= a.rows()) return;
-  const char* first = reinterpret_cast<const char*>(a.blocks().data() + a.row_start(row));
-  const int bytes = (a.row_start(row + 1) - a.row_start(row)) * static_cast<int>(sizeof(Mat3));
+  const char* first = reinterpret_cast<const char*>(blocks + a.row_start(row));
+  const int bytes =
+      (a.row_start(row + 1) - a.row_start(row)) * static_cast<int>(sizeof(Eigen::Matrix3f));
   for (int offset = 0; offset < bytes; offset += cache_line) __builtin_prefetch(first + offset);
 }
 
@@ -46,6 +49,14 @@ void BlockSparseMatrix::set_pattern(const std::vector<std::vector<int>>& neighbo
   }
   m_blocks.assign(m_column.size(), Mat3::Zero());
   m_diagonal_inverse.assign(n, Mat3::Identity());
+  m_sweep_blocks.assign(m_column.size(), Eigen::Matrix3f::Identity());
+  m_transpose.assign(m_column.size(), -1);
+  m_symmetric_pattern = true;
+  for (int i = 0; i < rows(); ++i)
+    for (int k = row_start(i); k < row_start(i + 1); ++k) {
+      m_transpose[static_cast<std::size_t>(k)] = find(column(k), i);
+      m_symmetric_pattern = m_symmetric_pattern && m_transpose[static_cast<std::size_t>(k)] >= 0;
+    }
 }
 
 int BlockSparseMatrix::find(int i, int j) const {
@@ -65,10 +76,24 @@ void BlockSparseMatrix::multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out)
   }
 }
 
-void BlockSparseMatrix::invert_diagonal() {
-  for (int i = 0; i < rows(); ++i)
-    m_diagonal_inverse[static_cast<std::size_t>(i)] =
-        m_blocks[static_cast<std::size_t>(row_start(i))].inverse();
+void BlockSparseMatrix::prepare_preconditioners() {
+  if (!m_symmetric_pattern)
+    throw std::logic_error("BlockSparseMatrix: the sweeps need a symmetric pattern");
+  for (int i = 0; i < rows(); ++i) {
+    const Mat3 inverse = m_blocks[static_cast<std::size_t>(row_start(i))].inverse();
+    m_diagonal_inverse[static_cast<std::size_t>(i)] = inverse;
+    m_sweep_blocks[static_cast<std::size_t>(row_start(i))] =
+        (0.5 * (inverse + inverse.transpose())).cast<float>();
+    // Each pair once, from the block right of the diagonal: (i, j) and (j, i) = its transpose.
+    for (int k = m_upper_start[static_cast<std::size_t>(i)]; k < row_start(i + 1); ++k) {
+      const int t = m_transpose[static_cast<std::size_t>(k)];
+      const Eigen::Matrix3f upper = (0.5 * (m_blocks[static_cast<std::size_t>(k)] +
+                                            m_blocks[static_cast<std::size_t>(t)].transpose()))
+                                        .cast<float>();
+      m_sweep_blocks[static_cast<std::size_t>(k)] = upper;
+      m_sweep_blocks[static_cast<std::size_t>(t)] = upper.transpose();
+    }
+  }
 }
 
 void BlockSparseMatrix::precondition_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& out) const {
@@ -78,12 +103,13 @@ void BlockSparseMatrix::precondition_jacobi(const Eigen::VectorXd& r, Eigen::Vec
 }
 
 void BlockSparseMatrix::backward_sweep(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  const Eigen::Matrix3f* blocks = m_sweep_blocks.data();
   for (int i = rows() - 1; i >= 0; --i) {
-    prefetch_row(*this, i - rows_ahead);
+    prefetch_row(*this, blocks, i - rows_ahead);
     Vec3 sum = particle(b, i);
     for (int k = row_start(i) + 1; k < row_start(i + 1); ++k)
-      sum.noalias() -= m_blocks[static_cast<std::size_t>(k)] * particle(x, column(k));
-    particle(x, i).noalias() = m_diagonal_inverse[static_cast<std::size_t>(i)] * sum;
+      sum.noalias() -= blocks[k].cast<double>() * particle(x, column(k));
+    particle(x, i).noalias() = blocks[row_start(i)].cast<double>() * sum;
   }
 }
 
@@ -91,19 +117,20 @@ void BlockSparseMatrix::forward_sweep_from_zero(const Eigen::VectorXd& b, Eigen:
                                                 Eigen::VectorXd& residual) const {
   x.resize(b.size());
   residual.resize(b.size());
+  const Eigen::Matrix3f* blocks = m_sweep_blocks.data();
   for (int i = 0; i < rows(); ++i) {
-    prefetch_row(*this, i + rows_ahead);
+    prefetch_row(*this, blocks, i + rows_ahead);
     Vec3 sum = particle(b, i);
     for (int k = row_start(i) + 1; k < m_upper_start[static_cast<std::size_t>(i)]; ++k)
-      sum.noalias() -= m_blocks[static_cast<std::size_t>(k)] * particle(x, column(k));
-    particle(x, i).noalias() = m_diagonal_inverse[static_cast<std::size_t>(i)] * sum;
+      sum.noalias() -= blocks[k].cast<double>() * particle(x, column(k));
+    particle(x, i).noalias() = blocks[row_start(i)].cast<double>() * sum;
   }
   // Row i of b - A x: its diagonal and left blocks cancel b_i by construction of x_i.
   for (int i = 0; i < rows(); ++i) {
-    prefetch_row(*this, i + rows_ahead);
+    prefetch_row(*this, blocks, i + rows_ahead);
     Vec3 sum = Vec3::Zero();
     for (int k = m_upper_start[static_cast<std::size_t>(i)]; k < row_start(i + 1); ++k)
-      sum.noalias() -= m_blocks[static_cast<std::size_t>(k)] * particle(x, column(k));
+      sum.noalias() -= blocks[k].cast<double>() * particle(x, column(k));
     particle(residual, i) = sum;
   }
 }

@@ -3,6 +3,15 @@
 // of its multigrid preconditioner. Each row keeps its diagonal block first, then its
 // off-diagonal blocks, so that a product or a Gauss-Seidel sweep streams through one row's
 // blocks contiguously (no scatter, unlike a loop over springs).
+//
+// The Gauss-Seidel sweeps read a single-precision copy of the blocks (docs/performance.md,
+// "Single-precision sweeps"): a multigrid cycle reads the fine matrix twice and CG's product
+// once, so at 128 x 128 (10.6 MB of double blocks) a CG iteration streams about 32 MB, and the
+// step's cost per particle grew with the grid once that no longer stayed in the cache. The
+// sweeps only precondition: CG's product and residuals stay in double, so the solution's accuracy
+// is CG's tolerance, not float's. The copy is rounded from the symmetric part, (A_ij + A_ji') / 2
+// and D_i^-1's symmetric part, so that the cycle stays exactly symmetric (CG needs a symmetric
+// preconditioner) even where the double blocks are transposes only to round-off (Galerkin sums).
 #include <vector>
 
 #include "core/model/state.hpp"
@@ -27,13 +36,15 @@ class BlockSparseMatrix {
 
   /// out = A p.
   void multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const;
-  /// Inverts the diagonal blocks for precondition_jacobi() and the sweeps; they must be
-  /// invertible (symmetric positive definite for an SPD matrix).
-  void invert_diagonal();
+  /// Inverts the diagonal blocks for precondition_jacobi() and forms the sweeps' single-
+  /// precision copy from the current values; the diagonal blocks must be invertible (symmetric
+  /// positive definite for an SPD matrix) and the pattern symmetric.
+  void prepare_preconditioners();
   /// out = D^-1 r, D the block diagonal.
   void precondition_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& out) const;
   /// One block Gauss-Seidel sweep on A x = b with rows descending:
-  /// x = (D + U)^-1 (b - L x), L and U the blocks left and right of the diagonal.
+  /// x = (D + U)^-1 (b - L x), L and U the blocks left and right of the diagonal (of the
+  /// single-precision copy, see above).
   void backward_sweep(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   /// The forward sweep (rows ascending) from x = 0, x = (D + L)^-1 b, and the residual it
   /// leaves, b - A x = -U x: together one pass over the blocks instead of a sweep and a product.
@@ -43,7 +54,11 @@ class BlockSparseMatrix {
  private:
   std::vector<int> m_row_start{0}, m_column;  // row_start of an empty matrix: rows() = 0
   std::vector<int> m_upper_start;  // row i's first block right of the diagonal
+  std::vector<int> m_transpose;    // index of block (j, i) for block (i, j), -1 if none
+  bool m_symmetric_pattern = true;
   std::vector<Mat3> m_blocks, m_diagonal_inverse;
+  // The sweeps' copy, indexed as m_blocks: D_i^-1 at row_start(i), the off-diagonal blocks after.
+  std::vector<Eigen::Matrix3f> m_sweep_blocks;
 };
 
 }  // namespace drape::detail

@@ -90,7 +90,7 @@ void GridMultigrid::update(const BlockSparseMatrix& fine) {
     for (const GalerkinTerm& t : level.galerkin)
       coarse[static_cast<std::size_t>(t.coarse)] +=
           t.weight * blocks[static_cast<std::size_t>(t.fine)];
-    level.matrix.invert_diagonal();
+    level.matrix.prepare_preconditioners();
     finer = &level.matrix;
   }
   m_coarsest.compute(dense(*finer));

@@ -15,7 +15,9 @@
 // The cycle smooths with one forward block Gauss-Seidel sweep before the coarse correction and
 // one backward sweep after it, and solves the coarsest level (at most 16 nodes) by a dense
 // Cholesky factorisation. The preconditioner B is symmetric (restriction is P^T, the two sweeps
-// are each other's adjoints in the A inner product) and BA's eigenvalues lie in (0, 1]: with G
+// are each other's adjoints in the A inner product) and BA's eigenvalues lie in (0, 1] (up to
+// float's rounding: the sweeps and the residual they leave see A rounded to single precision,
+// block_sparse_matrix.hpp, while the coarse operators are formed in double): with G
 // the forward sweep's error propagation, I - BA = G* (I - P B_c P^T A) G, and by induction over
 // the grids B_c A_c has its eigenvalues in (0, 1] (at the coarsest B_c A_c = I), so
 // I - P B_c P^T A is A-positive semidefinite and I - BA too; BA's eigenvalues are positive
@@ -44,7 +46,7 @@ class GridMultigrid {
   /// Builds the levels for `fine`, whose row i is node i of a rows x cols grid (row-major).
   void build(const BlockSparseMatrix& fine, int rows, int cols);
   /// Forms the coarse operators from `fine`'s current values and factorises the coarsest.
-  /// `fine` must have its diagonal inverted (BlockSparseMatrix::invert_diagonal).
+  /// `fine` must have its preconditioners prepared (BlockSparseMatrix::prepare_preconditioners).
   void update(const BlockSparseMatrix& fine);
   /// out = B r, B the cycle started from zero.
   void apply(const BlockSparseMatrix& fine, const Eigen::VectorXd& r, Eigen::VectorXd& out);

@@ -83,7 +83,7 @@ void ReducedNewtonSolver::form_system() {
   if (m_matrix.rows() == 0) build_block_rows();
   assemble_block_rows();
   // Each diagonal block is symmetric positive definite (a principal block of S).
-  m_matrix.invert_diagonal();
+  m_matrix.prepare_preconditioners();
   if (m_method == ReducedSolve::multigrid_cg) m_multigrid.update(m_matrix);
 }
 

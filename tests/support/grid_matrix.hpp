@@ -39,7 +39,7 @@ inline detail::BlockSparseMatrix grid_matrix(int rows, int cols, unsigned seed) 
     }
   for (int i = 0; i < n; ++i)
     a.blocks()[static_cast<std::size_t>(a.row_start(i))] += 0.01 * Mat3::Identity();
-  a.invert_diagonal();
+  a.prepare_preconditioners();
   return a;
 }
 

@@ -1,7 +1,9 @@
-// The block-row matrix against the same matrix held densely.
+// The block-row matrix against the same matrix held densely; its Gauss-Seidel sweeps against
+// the single-precision symmetric copy they read (block_sparse_matrix.hpp).
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <stdexcept>
 
 #include "integrators/newton/block_sparse_matrix.hpp"
 #include "tests/support/test_support.hpp"
@@ -24,7 +26,7 @@ detail::BlockSparseMatrix chain(Eigen::MatrixXd& dense) {
       a.blocks()[static_cast<std::size_t>(k)] = block;
       dense.block<3, 3>(3 * i, 3 * a.column(k)) = block;
     }
-  a.invert_diagonal();
+  a.prepare_preconditioners();
   return a;
 }
 
@@ -48,21 +50,45 @@ TEST(BlockSparseMatrix, ProductAndSweepsMatchTheDenseMatrix) {
   a.multiply(p, out);
   EXPECT_LT((out - dense * p).norm(), 1e-13 * out.norm());
 
-  // Split by blocks: D the diagonal blocks, L and U the blocks below and above them.
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(12, 12), l = d, u = d;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j)
-      (i == j ? d : i > j ? l : u).block<3, 3>(3 * i, 3 * j) = dense.block<3, 3>(3 * i, 3 * j);
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(12, 12);
+  for (int i = 0; i < 4; ++i) d.block<3, 3>(3 * i, 3 * i) = dense.block<3, 3>(3 * i, 3 * i);
   a.precondition_jacobi(b, out);
   EXPECT_LT((d * out - b).norm(), 1e-13 * b.norm());
+
+  // The sweeps' matrix, split by blocks: L and U the blocks below and above the diagonal of
+  // the symmetric part rounded to float (U = L' exactly), D the inverses of the rounded
+  // symmetric parts of the diagonal blocks' inverses.
+  const auto rounded = [](const Eigen::MatrixXd& m) -> Eigen::MatrixXd {
+    return m.cast<float>().cast<double>();
+  };
+  const Eigen::MatrixXd symmetric = 0.5 * (dense + dense.transpose());
+  Eigen::MatrixXd l = Eigen::MatrixXd::Zero(12, 12), u = l;
+  for (int i = 0; i < 4; ++i) {
+    const Mat3 inverse = dense.block<3, 3>(3 * i, 3 * i).inverse();
+    d.block<3, 3>(3 * i, 3 * i) = rounded(0.5 * (inverse + inverse.transpose())).inverse();
+    for (int j = 0; j < 4; ++j)
+      if (i != j)
+        (i > j ? l : u).block<3, 3>(3 * i, 3 * j) = rounded(symmetric.block<3, 3>(3 * i, 3 * j));
+  }
+  EXPECT_EQ(u, l.transpose());
+  EXPECT_LT((d + l + u - dense).cwiseAbs().maxCoeff(), 1.0);  // the jitter's asymmetry, < 1
   // A backward sweep solves (D + U) x_new = b - L x_old; the forward one from zero
-  // (D + L) x = b, and its residual is b - A x.
+  // (D + L) x = b, and its residual is b - (D + L + U) x.
   Eigen::VectorXd x = p, residual;
   a.backward_sweep(b, x);
   EXPECT_LT(((d + u) * x - (b - l * p)).norm(), 1e-12 * b.norm());
   a.forward_sweep_from_zero(b, x, residual);
   EXPECT_LT(((d + l) * x - b).norm(), 1e-12 * b.norm());
-  EXPECT_LT((residual - (b - dense * x)).norm(), 1e-12 * b.norm());
+  EXPECT_LT((residual - (b - (d + l + u) * x)).norm(), 1e-12 * b.norm());
+}
+
+TEST(BlockSparseMatrix, SweepsNeedASymmetricPattern) {
+  detail::BlockSparseMatrix a;
+  for (const auto& pattern : {std::vector<std::vector<int>>{{1}, {}}, {{}, {0}}}) {
+    a.set_pattern(pattern);
+    a.blocks()[0] = a.blocks()[2] = Mat3::Identity();
+    EXPECT_THROW(a.prepare_preconditioners(), std::logic_error);
+  }
 }
 
 }  // namespace
