@@ -11,11 +11,11 @@
 #include "experiments/cli/did_you_mean.hpp"
 #include "experiments/cli/experiment_cli.hpp"
 #include "experiments/cli/fabrics_command.hpp"
+#include "experiments/cli/integrators_command.hpp"
 #include "experiments/cli/run_stats.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_scene.hpp"
-#include "integrators/interface/registry.hpp"
 #include "experiments/viewer/view_command.hpp"
 #include "experiments/live/live_command.hpp"
 
@@ -33,23 +33,6 @@ int run_command(const std::string& scene_file, const std::string& out_dir,
     fmt::print("drapelab run {} -> {}\n{}", scene_file, out_dir,
                drape::format_run_stats(outcome.summary));
   return outcome.exit_code;
-}
-
-int list_integrators() {
-  fmt::print("{:<18} {:<9} {:>5} {:>8}  {}\n", "integrator", "kind", "order", "adaptive",
-             "description");
-  for (const auto& info : drape::integrators())
-    fmt::print("{:<18} {:<9} {:>5} {:>8}  {}\n", info.name, info.kind, info.order,
-               info.adaptive ? "yes" : "no", info.description);
-  const auto tables = drape::integrator_tables();
-  if (!tables.empty()) {
-    fmt::print("\n{:<18} {:<36} {:>5} {:>8} {:>6}\n", "integrator", "table", "order",
-               "embedded", "stages");
-    for (const auto& t : tables)
-      fmt::print("{:<18} {:<36} {:>5} {:>8} {:>6}\n", t.integrator, t.name, t.order,
-                 t.embedded_order, t.stages);
-  }
-  return 0;
 }
 
 }  // namespace
@@ -79,8 +62,15 @@ int main(int argc, char** argv) {
   bool overwrite = false;
   run->add_flag("--overwrite", overwrite, "replace the run files of an earlier run in --out");
 
-  app.add_subcommand("integrators", "list integrators and ARKODE tables with their orders")
-      ->footer("Example:\n  drapelab integrators");
+  std::string dirk_table;
+  auto* integrators =
+      app.add_subcommand("integrators", "list integrators and ARKODE tables with their orders");
+  integrators->add_option("--table", dirk_table,
+                          "print this arkode-dirk table's coefficients as the inline JSON "
+                          "tableau integrator.table accepts");
+  integrators->footer(
+      "Examples:\n  drapelab integrators\n"
+      "  drapelab integrators --table ARKODE_KVAERNO_4_2_3 > kvaerno.json");
   bool fabrics_json = false;
   auto* fabrics = app.add_subcommand("fabrics", "list fabric presets and their published sources");
   fabrics->add_flag("--json", fabrics_json, "print a JSON list");
@@ -122,7 +112,8 @@ int main(int argc, char** argv) {
     if (fabrics->parsed()) return drape::list_fabrics(fabrics_json);
     if (convert->parsed()) return drape::convert_command(convert_in, convert_out);
     if (const int code = experiment_commands.dispatch(); code >= 0) return code;
-    return list_integrators();
+    if (integrators->parsed() && !dirk_table.empty()) return drape::print_dirk_table(dirk_table);
+    return drape::list_integrators();
   } catch (const drape::InputError& e) {
     std::cerr << "drapelab: error: " << e.what() << "\n";
     return drape::exit_input;

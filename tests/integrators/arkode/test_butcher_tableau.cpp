@@ -49,6 +49,12 @@ TEST(ButcherTableau, InconsistentTablesNameTheirField) {
   t = backward_euler;
   t["p"] = 1;
   EXPECT_NE(error_of(t).find("integrator.table.p"), std::string::npos) << error_of(t);
+  // The consistency tolerance, 1e-10: a published table's last digits pass, a wrong digit not.
+  t = implicit_midpoint;
+  t["c"] = {0.5 + 5e-11};
+  EXPECT_EQ(error_of(t), "no error");
+  t["c"] = {0.5 + 2e-10};
+  EXPECT_NE(error_of(t).find("integrator.table.c"), std::string::npos) << error_of(t);
 }
 
 TEST(ButcherTableau, OnlyArkodeDirkTakesAnInlineTable) {

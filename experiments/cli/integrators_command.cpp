@@ -1,0 +1,42 @@
+#include "experiments/cli/integrators_command.hpp"
+
+#include <fmt/format.h>
+
+#include "core/scene/input_error.hpp"
+#include "integrators/arkode/arkode_tables.hpp"
+#include "integrators/arkode/butcher_tableau.hpp"
+#include "integrators/interface/registry.hpp"
+
+namespace drape {
+
+int list_integrators() {
+  fmt::print("{:<18} {:<9} {:>5} {:>8}  {}\n", "integrator", "kind", "order", "adaptive",
+             "description");
+  for (const auto& info : integrators())
+    fmt::print("{:<18} {:<9} {:>5} {:>8}  {}\n", info.name, info.kind, info.order,
+               info.adaptive ? "yes" : "no", info.description);
+  const auto tables = integrator_tables();
+  if (!tables.empty()) {
+    fmt::print("\n{:<18} {:<36} {:>5} {:>8} {:>6}\n", "integrator", "table", "order",
+               "embedded", "stages");
+    for (const auto& t : tables)
+      fmt::print("{:<18} {:<36} {:>5} {:>8} {:>6}\n", t.integrator, t.name, t.order,
+                 t.embedded_order, t.stages);
+  }
+  return 0;
+}
+
+int print_dirk_table(const std::string& name) {
+  const ArkodeTable* table = find_arkode_table(name, ArkodeKind::diagonally_implicit);
+  if (table == nullptr)
+    throw InputError("drapelab integrators", "--table",
+                     "'" + shorten(name) +
+                         "' is not an arkode-dirk table (drapelab integrators lists them)");
+  // One line, so that it can be passed on as it is: --set integrator.table="$(...)". JSON keeps
+  // every double exactly (17 significant digits), so the user table is the same method.
+  fmt::print("{}\n",
+             to_json(detail::to_butcher_tableau(detail::load_implicit_table(*table).get())).dump());
+  return 0;
+}
+
+}  // namespace drape

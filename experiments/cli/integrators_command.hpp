@@ -1,0 +1,15 @@
+#pragma once
+// `drapelab integrators`: the integrators and ARKODE tables, and one DIRK table's coefficients
+// in the form `integrator.table` accepts inline (docs/integrators.md, "User tables").
+#include <string>
+
+namespace drape {
+
+/// Prints the integrators and the ARKODE tables with their orders. Returns exit status 0.
+int list_integrators();
+/// Prints the arkode-dirk table `name` (e.g. ARKODE_KVAERNO_4_2_3) as an inline tableau:
+/// {"c", "A", "b", "d", "q", "p"}, to study or change it as a user table. Throws InputError
+/// (field `--table`) for a name that is not an arkode-dirk table.
+int print_dirk_table(const std::string& name);
+
+}  // namespace drape
