@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   std::string dirk_table;
   auto* integrators =
       app.add_subcommand("integrators", "list integrators and ARKODE tables with their orders");
-  integrators->add_option("--table", dirk_table,
+  auto* table_option = integrators->add_option("--table", dirk_table,
                           "print this arkode-dirk table's coefficients as the inline JSON "
                           "tableau integrator.table accepts");
   integrators->footer(
@@ -112,7 +112,8 @@ int main(int argc, char** argv) {
     if (fabrics->parsed()) return drape::list_fabrics(fabrics_json);
     if (convert->parsed()) return drape::convert_command(convert_in, convert_out);
     if (const int code = experiment_commands.dispatch(); code >= 0) return code;
-    if (integrators->parsed() && !dirk_table.empty()) return drape::print_dirk_table(dirk_table);
+    if (integrators->parsed() && table_option->count() > 0)
+      return drape::print_dirk_table(dirk_table);
     return drape::list_integrators();
   } catch (const drape::InputError& e) {
     std::cerr << "drapelab: error: " << e.what() << "\n";

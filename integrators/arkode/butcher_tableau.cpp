@@ -12,7 +12,7 @@ namespace {
 // Published tables are often given to 10 or 11 digits: ARKODE's own CASH_5_2_4 and CASH_5_3_4
 // have rows of A that sum to c within 1.1e-11 and weights that sum to 1 within 7.8e-12
 // (`drapelab integrators --table` prints them for reuse as user tables), BILLINGTON_3_3_2
-// within 1.0e-12. 1e-10 accepts them and still rejects a wrong digit up to the tenth.
+// within 1.0e-12. 1e-10 accepts them and still rejects a wrong digit up to the ninth.
 constexpr double tolerance = 1e-10;
 
 bool near(double value, double expected) { return std::abs(value - expected) <= tolerance; }

@@ -20,7 +20,7 @@ struct ButcherTableau {
 };
 
 /// Reads and checks an inline tableau: A square and lower triangular, sizes that match, the
-/// weights summing to 1 and A's row sums equal to c within 1e-12, and q, p satisfied by the
+/// weights summing to 1 and A's row sums equal to c within 1e-10, and q, p satisfied by the
 /// order conditions up to order 3 (when absent, the highest order up to 3 they satisfy).
 /// Errors name `file` and `path.<field>`.
 ButcherTableau read_butcher_tableau(const nlohmann::json& object, const std::string& file,

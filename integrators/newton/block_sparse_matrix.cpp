@@ -78,12 +78,17 @@ void BlockSparseMatrix::multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out)
   }
 }
 
-void BlockSparseMatrix::prepare_preconditioners() {
+void BlockSparseMatrix::invert_diagonal() {
+  for (int i = 0; i < rows(); ++i)
+    m_diagonal_inverse[static_cast<std::size_t>(i)] =
+        m_blocks[static_cast<std::size_t>(row_start(i))].inverse();
+}
+
+void BlockSparseMatrix::prepare_sweeps() {
   if (!m_symmetric_pattern)
     throw std::logic_error("BlockSparseMatrix: the sweeps need a symmetric pattern");
   for (int i = 0; i < rows(); ++i) {
-    const Mat3 inverse = m_blocks[static_cast<std::size_t>(row_start(i))].inverse();
-    m_diagonal_inverse[static_cast<std::size_t>(i)] = inverse;
+    const Mat3& inverse = m_diagonal_inverse[static_cast<std::size_t>(i)];
     m_sweep_blocks[static_cast<std::size_t>(row_start(i))] =
         (0.5 * (inverse + inverse.transpose())).cast<float>();
     // Each pair once, from the block right of the diagonal: (i, j) and (j, i) = its transpose.

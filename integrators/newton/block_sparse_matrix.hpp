@@ -36,10 +36,12 @@ class BlockSparseMatrix {
 
   /// out = A p.
   void multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const;
-  /// Inverts the diagonal blocks for precondition_jacobi() and forms the sweeps' single-
-  /// precision copy from the current values; the diagonal blocks must be invertible (symmetric
-  /// positive definite for an SPD matrix) and the pattern symmetric.
-  void prepare_preconditioners();
+  /// Inverts the diagonal blocks for precondition_jacobi(); they must be invertible (symmetric
+  /// positive definite for an SPD matrix).
+  void invert_diagonal();
+  /// Forms the sweeps' single-precision copy from the current values (after invert_diagonal());
+  /// the pattern must be symmetric.
+  void prepare_sweeps();
   /// out = D^-1 r, D the block diagonal.
   void precondition_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& out) const;
   /// One block Gauss-Seidel sweep on A x = b with rows descending:
@@ -47,7 +49,8 @@ class BlockSparseMatrix {
   /// single-precision copy, see above).
   void backward_sweep(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   /// The forward sweep (rows ascending) from x = 0, x = (D + L)^-1 b, and the residual it
-  /// leaves, b - A x = -U x: together one pass over the blocks instead of a sweep and a product.
+  /// leaves, b - A x = -U x, A here the single-precision copy the sweeps read: together one pass
+  /// over the blocks instead of a sweep and a product.
   void forward_sweep_from_zero(const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                Eigen::VectorXd& residual) const;
 

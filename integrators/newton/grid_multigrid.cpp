@@ -90,7 +90,8 @@ void GridMultigrid::update(const BlockSparseMatrix& fine) {
     for (const GalerkinTerm& t : level.galerkin)
       coarse[static_cast<std::size_t>(t.coarse)] +=
           t.weight * blocks[static_cast<std::size_t>(t.fine)];
-    level.matrix.prepare_preconditioners();
+    level.matrix.invert_diagonal();
+    level.matrix.prepare_sweeps();
     finer = &level.matrix;
   }
   m_coarsest.compute(dense(*finer));

@@ -46,7 +46,8 @@ class GridMultigrid {
   /// Builds the levels for `fine`, whose row i is node i of a rows x cols grid (row-major).
   void build(const BlockSparseMatrix& fine, int rows, int cols);
   /// Forms the coarse operators from `fine`'s current values and factorises the coarsest.
-  /// `fine` must have its preconditioners prepared (BlockSparseMatrix::prepare_preconditioners).
+  /// `fine` must have its diagonal inverted and its sweeps prepared
+  /// (BlockSparseMatrix::invert_diagonal, prepare_sweeps).
   void update(const BlockSparseMatrix& fine);
   /// out = B r, B the cycle started from zero.
   void apply(const BlockSparseMatrix& fine, const Eigen::VectorXd& r, Eigen::VectorXd& out);

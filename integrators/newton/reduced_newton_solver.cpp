@@ -83,8 +83,11 @@ void ReducedNewtonSolver::form_system() {
   if (m_matrix.rows() == 0) build_block_rows();
   assemble_block_rows();
   // Each diagonal block is symmetric positive definite (a principal block of S).
-  m_matrix.prepare_preconditioners();
-  if (m_method == ReducedSolve::multigrid_cg) m_multigrid.update(m_matrix);
+  m_matrix.invert_diagonal();
+  if (m_method == ReducedSolve::multigrid_cg) {
+    m_matrix.prepare_sweeps();
+    m_multigrid.update(m_matrix);
+  }
 }
 
 void ReducedNewtonSolver::build_block_rows() {

@@ -11,7 +11,7 @@ namespace drape::testing {
 
 /// 0.01 I + sum over the rows x cols grid's 8-neighbour pairs of a random SPD coupling
 /// C = R R' (R's entries uniform in [-1, 1], drawn in pair order from `seed`): C on both
-/// diagonal blocks and -C off them. Its diagonal is inverted.
+/// diagonal blocks and -C off them. Its diagonal is inverted and its sweeps prepared.
 inline detail::BlockSparseMatrix grid_matrix(int rows, int cols, unsigned seed) {
   const int n = rows * cols;
   std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(n));
@@ -39,7 +39,8 @@ inline detail::BlockSparseMatrix grid_matrix(int rows, int cols, unsigned seed) 
     }
   for (int i = 0; i < n; ++i)
     a.blocks()[static_cast<std::size_t>(a.row_start(i))] += 0.01 * Mat3::Identity();
-  a.prepare_preconditioners();
+  a.invert_diagonal();
+  a.prepare_sweeps();
   return a;
 }
 

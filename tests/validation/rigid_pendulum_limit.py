@@ -6,8 +6,10 @@ five DIRK tables gain energy when the spring turns by about a radian a step, and
 turns by 0.1 rad. Here every arkode-dirk table (its coefficients from `drapelab integrators
 --table`) also steps the pendulum's stiff limit, a rigid rod of the same length: the index-3
 system q' = v, v' = g - lambda q - c_air v / m, |q| = L (Hairer and Wanner, Solving ODEs II,
-sec. VII.1; Lubich 1993, "Integration of stiff mechanical systems by Runge-Kutta methods", ZAMP
-44: an L-stable method on a stiff spring tends to the same method on this constrained system).
+sec. VII.1; Runge-Kutta methods on it: Hairer, Lubich and Roche 1989, LNM 1409; Lubich 1993,
+"Integration of stiff mechanical systems by Runge-Kutta methods", ZAMP 44, analyses when a method
+on a stiff spring behaves as on this constrained system). Whether a table's split here matches
+the spring's is measured, not assumed.
 Every implicit stage then has a closed form: with the stage's known part (q_k, v_k), gamma = h
 a_ii and P = q_k + gamma (v_k + gamma g) / (1 + gamma c), the stage position is Q = L P / |P|
 (the root on P's side; the other, -L P / |P|, would hold the rod compressed through the pivot),
@@ -52,8 +54,10 @@ def rigid_energy_change(table, length):
             qk = q + H * sum(a[i, j] * vs[j] for j in range(i))
             vk = v + H * sum(a[i, j] * fs[j] for j in range(i))
             gamma = H * a[i, i]
-            if gamma == 0.0:
-                stage_q, stage_v, lam = q, v, lam_last
+            if gamma == 0.0:  # an ESDIRK's explicit first stage (no other stage is explicit)
+                if i > 0:
+                    raise ValueError("an explicit stage after the first has no rigid-rod meaning")
+                stage_q, stage_v, lam = qk, vk, lam_last
             else:
                 p = qk + gamma * (vk + gamma * G) / (1.0 + gamma * C)
                 stage_q = length * p / np.linalg.norm(p)

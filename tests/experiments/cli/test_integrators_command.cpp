@@ -68,8 +68,8 @@ TEST(IntegratorsCommand, RunWithThePrintedTableIsTheRunWithItsName) {
 }
 
 TEST(IntegratorsCommand, NamesTheOptionForATableThatIsNotDirk) {
-  for (const std::string name : {"KVAERNO", "ARKODE_BOGACKI_SHAMPINE_4_2_3"}) {
-    const auto result = run_drapelab("integrators --table " + name);
+  for (const std::string name : {"KVAERNO", "ARKODE_BOGACKI_SHAMPINE_4_2_3", ""}) {
+    const auto result = run_drapelab("integrators --table '" + name + "'");
     EXPECT_EQ(result.exit_code, 2) << name;
     EXPECT_NE(result.err.find("--table"), std::string::npos) << result.err;
     EXPECT_NE(result.err.find(name), std::string::npos) << result.err;
