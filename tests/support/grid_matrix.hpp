@@ -1,7 +1,8 @@
 #pragma once
 // A random matrix with the shape of the reduced system S of a spring grid
-// (reduced_newton_solver.hpp), shared by the multigrid tests and the linear-solver benchmarks;
-// no test framework needed.
+// (reduced_newton_solver.hpp), shared by the multigrid tests and the linear-solver benchmarks,
+// and the dense matrix its sweeps see; no test framework needed.
+#include <Eigen/Dense>
 #include <random>
 #include <vector>
 
@@ -42,6 +43,19 @@ inline detail::BlockSparseMatrix grid_matrix(int rows, int cols, unsigned seed) 
   a.invert_diagonal();
   a.prepare_sweeps();
   return a;
+}
+
+/// The dense matrix the Gauss-Seidel sweeps of `a` (held densely) see (block_sparse_matrix.hpp):
+/// its symmetric part rounded to float off the diagonal, and on it the inverses of the rounded
+/// symmetric parts of the diagonal blocks' inverses.
+inline Eigen::MatrixXd sweep_matrix(const Eigen::MatrixXd& a) {
+  Eigen::MatrixXd out = (0.5 * (a + a.transpose())).cast<float>().cast<double>();
+  for (Eigen::Index i = 0; i < a.rows() / 3; ++i) {
+    const Mat3 inverse = a.block<3, 3>(3 * i, 3 * i).inverse();
+    out.block<3, 3>(3 * i, 3 * i) =
+        (0.5 * (inverse + inverse.transpose())).cast<float>().cast<double>().inverse();
+  }
+  return out;
 }
 
 }  // namespace drape::testing

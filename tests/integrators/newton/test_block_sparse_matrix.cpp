@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "integrators/newton/block_sparse_matrix.hpp"
+#include "tests/support/grid_matrix.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {
@@ -56,22 +57,15 @@ TEST(BlockSparseMatrix, ProductAndSweepsMatchTheDenseMatrix) {
   a.precondition_jacobi(b, out);
   EXPECT_LT((d * out - b).norm(), 1e-13 * b.norm());
 
-  // The sweeps' matrix, split by blocks: L and U the blocks below and above the diagonal of
-  // the symmetric part rounded to float (U = L' exactly), D the inverses of the rounded
-  // symmetric parts of the diagonal blocks' inverses.
-  const auto rounded = [](const Eigen::MatrixXd& m) -> Eigen::MatrixXd {
-    return m.cast<float>().cast<double>();
-  };
-  const Eigen::MatrixXd symmetric = 0.5 * (dense + dense.transpose());
+  // The sweeps' matrix (testing::sweep_matrix), split by blocks: D the diagonal blocks, L and U
+  // the blocks below and above them (U = L' exactly).
+  const Eigen::MatrixXd sweeps = testing::sweep_matrix(dense);
   Eigen::MatrixXd l = Eigen::MatrixXd::Zero(12, 12), u = l;
-  for (int i = 0; i < 4; ++i) {
-    const Mat3 inverse = dense.block<3, 3>(3 * i, 3 * i).inverse();
-    d.block<3, 3>(3 * i, 3 * i) = rounded(0.5 * (inverse + inverse.transpose())).inverse();
+  for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
-      if (i != j)
-        (i > j ? l : u).block<3, 3>(3 * i, 3 * j) = rounded(symmetric.block<3, 3>(3 * i, 3 * j));
-  }
+      (i == j ? d : i > j ? l : u).block<3, 3>(3 * i, 3 * j) = sweeps.block<3, 3>(3 * i, 3 * j);
   EXPECT_EQ(u, l.transpose());
+  const Eigen::MatrixXd symmetric = 0.5 * (dense + dense.transpose());
   // Off the diagonal the copy is the symmetric part up to float's rounding, 2^-24 relative.
   Eigen::MatrixXd off_diagonal = symmetric;
   for (int i = 0; i < 4; ++i) off_diagonal.block<3, 3>(3 * i, 3 * i).setZero();

@@ -14,6 +14,7 @@ namespace drape {
 namespace {
 
 using testing::grid_matrix;
+using testing::sweep_matrix;
 
 Eigen::VectorXd cycle(detail::GridMultigrid& mg, const detail::BlockSparseMatrix& a,
                       const Eigen::VectorXd& r) {
@@ -65,19 +66,6 @@ Eigen::MatrixXd dense_matrix(const detail::BlockSparseMatrix& a) {
   for (Eigen::Index k = 0; k < n3; ++k) {
     a.multiply(Eigen::VectorXd::Unit(n3, k), column);
     out.col(k) = column;
-  }
-  return out;
-}
-
-// The matrix the Gauss-Seidel sweeps of a grid see (block_sparse_matrix.hpp): A's symmetric
-// part rounded to float off the diagonal, and on it the inverses of the rounded symmetric parts
-// of the diagonal blocks' inverses.
-Eigen::MatrixXd sweep_matrix(const Eigen::MatrixXd& a) {
-  Eigen::MatrixXd out = (0.5 * (a + a.transpose())).cast<float>().cast<double>();
-  for (Eigen::Index i = 0; i < a.rows() / 3; ++i) {
-    const Mat3 inverse = a.block<3, 3>(3 * i, 3 * i).inverse();
-    out.block<3, 3>(3 * i, 3 * i) =
-        (0.5 * (inverse + inverse.transpose())).cast<float>().cast<double>().inverse();
   }
   return out;
 }
