@@ -97,8 +97,10 @@ void ImplicitEuler::linearised_step(double t_next) {
   ++m_counters.jacobian_setups;
   m_increment.resize(m_y.size());
   const long cg_before = m_solver.iterations();
-  // The last step's dv starts CG: velocities change smoothly from step to step.
-  if (!m_solver.solve(m_residual, m_increment, CgStart::previous)) ++m_counters.convergence_failures;
+  // CG starts from the best combination of the last two steps' dv: velocities change smoothly
+  // from step to step, but the last dv alone is a poor start where the motion turns.
+  if (!m_solver.solve(m_residual, m_increment, CgStart::projected))
+    ++m_counters.convergence_failures;
   m_counters.linear_iters += m_solver.iterations() - cg_before;
   ++m_counters.newton_iters;
   m_y += m_increment;  // x += h (v + dv), v += dv

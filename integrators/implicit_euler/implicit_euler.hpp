@@ -13,8 +13,8 @@ namespace drape {
 ///   (M - h dF/dv - h^2 dF/dx) dv = h (F + h dF/dx v),   x += h (v + dv),   v += dv,
 /// with the definite Jacobian, fixed particles' dv prescribed (filtered out of the solve) and
 /// the 3N system solved by CG preconditioned by a multigrid cycle (`pcg-multigrid`, the
-/// default) or by its block diagonal (`pcg-reduced`), both warm-started from the last step's dv
-/// to the relative residual `linear_tolerance` (default 1e-3), or by a sparse LDLT
+/// default) or by its block diagonal (`pcg-reduced`), both started from the S-orthogonal
+/// projection onto the last two steps' dv (CgStart::projected) and run to the relative residual `linear_tolerance` (default 1e-3), or by a sparse LDLT
 /// factorisation (`sparse-direct`). Then the projection of docs/model.md section 5. First order,
 /// unconditionally stable for the linearised problem; one force evaluation and one Jacobian
 /// per step. With `solve` = converged, backward Euler itself: the one stage

@@ -241,21 +241,55 @@ bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorX
     z_v = m_ldlt.solve(b);
     return m_ldlt.info() == Eigen::Success;
   }
-  // Preconditioned conjugate gradients (Shewchuk 1994, B2), stopping at |b - S z| <= tolerance
-  // |b|. The iterates stay zero on fixed particles: b and the preconditioner are zero there.
-  const double b_norm = b.norm();
-  if (b_norm == 0.0) {
-    z_v.setZero(b.size());
-    return true;
-  }
-  if (start == CgStart::previous && z_v.size() == b.size()) {
-    m_system.constraints().zero_fixed(z_v);
-    m_matrix.multiply(z_v, m_product);
-    m_residual = b - m_product;
+  // The iterates stay zero on fixed particles: b and the preconditioner are zero there.
+  if (start == CgStart::projected) {
+    start_projected(b, z_v);
   } else {
     z_v.setZero(b.size());
     m_residual = b;
   }
+  const bool converged = conjugate_gradients(b.norm(), z_v, tolerance);
+  if (start == CgStart::projected) {
+    std::swap(m_history[0], m_history[1]);
+    m_history[0] = z_v;
+  }
+  return converged;
+}
+
+void ReducedNewtonSolver::start_projected(const Eigen::VectorXd& b, Eigen::VectorXd& z_v) {
+  // z_v = U c with (U' S U) c = U' b, U the stored solves: the S-orthogonal projection of the
+  // solution onto span U. The 2x2 system is solved on its eigenvalues above a relative cutoff,
+  // so that parallel, zero or missing (empty) columns drop out instead of dividing by zero.
+  Eigen::Matrix2d gram = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d projected_b = Eigen::Vector2d::Zero();
+  for (std::size_t a = 0; a < m_history.size(); ++a) {
+    Eigen::VectorXd& u = m_history[a];
+    if (u.size() != b.size()) u.setZero(b.size());
+    m_system.constraints().zero_fixed(u);  // the fixed set may have changed since
+    m_matrix.multiply(u, m_history_products[a]);
+    projected_b(static_cast<Eigen::Index>(a)) = u.dot(b);
+  }
+  for (Eigen::Index a = 0; a < 2; ++a)
+    for (Eigen::Index c = 0; c < 2; ++c)
+      gram(a, c) = 0.5 * (m_history[static_cast<std::size_t>(a)].dot(
+                              m_history_products[static_cast<std::size_t>(c)]) +
+                          m_history[static_cast<std::size_t>(c)].dot(
+                              m_history_products[static_cast<std::size_t>(a)]));
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(gram);
+  const double cutoff = 1e-12 * eigen.eigenvalues().cwiseAbs().maxCoeff();
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  for (Eigen::Index k = 0; k < 2; ++k)
+    if (eigen.eigenvalues()(k) > cutoff)
+      c += eigen.eigenvectors().col(k) *
+           (eigen.eigenvectors().col(k).dot(projected_b) / eigen.eigenvalues()(k));
+  z_v = c(0) * m_history[0] + c(1) * m_history[1];
+  m_residual = b - c(0) * m_history_products[0] - c(1) * m_history_products[1];
+}
+
+bool ReducedNewtonSolver::conjugate_gradients(double b_norm, Eigen::VectorXd& z_v,
+                                              double tolerance) {
+  // Preconditioned conjugate gradients (Shewchuk 1994, B2) from z_v, m_residual = b - S z_v,
+  // stopping at |b - S z| <= tolerance |b| (at once for b = 0, whose start is then 0).
   if (m_residual.norm() <= tolerance * b_norm) return true;
   precondition(m_residual, m_preconditioned);
   m_direction = m_preconditioned;

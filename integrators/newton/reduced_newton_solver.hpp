@@ -16,6 +16,7 @@
 // factorisation fills a compressed matrix whose pattern and symbolic analysis are built once.
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,8 +36,14 @@ enum class ReducedSolve {
 
 /// Where conjugate gradients start.
 enum class CgStart {
-  zero,      ///< z_v = 0 (a preconditioner: every right-hand side is unrelated to the last)
-  previous,  ///< the last solve's z_v (implicit Euler: the previous step's dv, a warm start)
+  zero,  ///< z_v = 0 (a preconditioner: every right-hand side is unrelated to the last)
+  /// The best combination of the last two `projected` solves' z_v (implicit Euler: the last
+  /// two steps' dv): the Galerkin projection of S z_v = b onto their span, which minimises the
+  /// error's S-norm over it, so the start is never worse than 0 or than the last dv alone in
+  /// that norm (Fischer 1998, "Projection techniques for iterative solution of Ax = b with
+  /// successive right-hand sides", Comput. Methods Appl. Mech. Engrg. 163; docs/performance.md,
+  /// "Starting CG from the last two steps").
+  projected,
 };
 
 /// The method `integrator.linear_solver` names, or nothing for an unknown name.
@@ -85,6 +92,10 @@ class ReducedNewtonSolver {
   void jacobian_times(ConstVecRef r_x, const Eigen::VectorXd& w, Eigen::VectorXd& out) const;
   bool solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v, CgStart start,
                      double tolerance);
+  /// z_v and m_residual = b - S z_v for CgStart::projected, from m_history.
+  void start_projected(const Eigen::VectorXd& b, Eigen::VectorXd& z_v);
+  /// CG on S z_v = b from z_v, whose residual is m_residual; false at max_iterations.
+  bool conjugate_gradients(double b_norm, Eigen::VectorXd& z_v, double tolerance);
 
   const ClothSystem& m_system;
   ReducedSolve m_method;
@@ -107,6 +118,9 @@ class ReducedNewtonSolver {
   std::vector<BlockSlot> m_diagonal_slots, m_spring_slots;  // spring e: (i, j) at 2e, (j, i) at 2e+1
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> m_ldlt;
   Eigen::VectorXd m_b, m_z_v, m_fixed_r_v, m_residual, m_direction, m_preconditioned, m_product;
+  // CgStart::projected: the last two such solves' z_v (newest first; empty until solved) and
+  // their products by the current S.
+  std::array<Eigen::VectorXd, 2> m_history, m_history_products;
 };
 
 }  // namespace drape

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
 
 #include "core/dummy/dummy.hpp"
 #include "integrators/newton/reduced_newton_solver.hpp"
@@ -152,6 +153,68 @@ TEST(ReducedNewtonSolver, SolveTolerancesOverrideTheConstructors) {
   EXPECT_LT(2 * loose_iterations, tight_iterations);
   EXPECT_GT((loose - exact).norm(), 1e-10 * exact.norm());  // stopped early, not converged
   EXPECT_LT((loose - exact).norm(), 0.1 * exact.norm());
+}
+
+// CgStart::projected (Fischer 1998): a right-hand side in the span of the last two gives their
+// combination as the start, and CG has nothing left to do.
+TEST(ReducedNewtonSolver, ProjectedStartIsExactInTheSpanOfTheLastTwoSolves) {
+  auto [s, n3, y, r1] = jittered_problem(13);
+  const Eigen::VectorXd r2 = testing::jitter(Eigen::VectorXd::Zero(2 * n3), 1.0, 15);
+  ReducedNewtonSolver solver(*s, ReducedSolve::multigrid_cg, ForceSplit::all, 1e-13, 500);
+  solver.update(y.head(n3), y.tail(n3), 1.0 / 30.0);
+  Eigen::VectorXd z1(2 * n3), z2(2 * n3), z3(2 * n3);
+  ASSERT_TRUE(solver.solve(r1, z1, CgStart::projected));
+  ASSERT_TRUE(solver.solve(r2, z2, CgStart::projected));
+  const long before = solver.iterations();
+  ASSERT_GT(before, 0);
+  ASSERT_TRUE(solver.solve(2.0 * r1 - 0.5 * r2, z3, CgStart::projected, 1e-10));
+  EXPECT_EQ(solver.iterations(), before);
+  const Eigen::VectorXd expected = 2.0 * z1 - 0.5 * z2;
+  EXPECT_LT((z3 - expected).norm(), 1e-11 * expected.norm());
+}
+
+// The start minimises the error's S-norm over the span of the last two solves, which holds 0
+// and the last solve: S changes between the solves (three states), as it does between steps.
+TEST(ReducedNewtonSolver, ProjectedStartIsNoWorseThanZeroOrTheLastSolve) {
+  const double gamma = 1.0 / 30.0;
+  auto [s, n3, y, r] = jittered_problem(17);
+  for (const int i : s->constraints().fixed_particles()) {
+    r.segment<3>(3 * i).setZero();  // b = M r_v + gamma K r_x below
+    r.segment<3>(n3 + 3 * i).setZero();
+  }
+  ReducedNewtonSolver solver(*s, ReducedSolve::conjugate_gradients, ForceSplit::all, 1e-12, 500);
+  Eigen::VectorXd z(2 * n3), last(2 * n3);
+  for (const unsigned seed : {19u, 21u}) {
+    const Eigen::VectorXd y_k = testing::jitter(y, 0.002, seed);
+    solver.update(y_k.head(n3), y_k.tail(n3), gamma);
+    ASSERT_TRUE(solver.solve(testing::jitter(r, 0.3, seed + 1), last, CgStart::projected));
+  }
+  solver.update(y.head(n3), y.tail(n3), gamma);
+  // A tolerance no residual misses returns the start itself.
+  ASSERT_TRUE(solver.solve(r, z, CgStart::projected, 1e300));
+  Eigen::SparseMatrix<double> dfdx, dfdv;
+  s->force_jacobians(y.head(n3), y.tail(n3), true, dfdx, dfdv, ForceSplit::all);
+  Eigen::MatrixXd S = s->particle_mass() * Eigen::MatrixXd::Identity(n3, n3) -
+                      gamma * Eigen::MatrixXd(dfdv) - gamma * gamma * Eigen::MatrixXd(dfdx);
+  Eigen::VectorXd b = s->particle_mass() * r.tail(n3) + gamma * (dfdx * r.head(n3));
+  for (const int i : s->constraints().fixed_particles()) {
+    S.middleRows(3 * i, 3).setZero();
+    S.middleCols(3 * i, 3).setZero();
+    S.block<3, 3>(3 * i, 3 * i) = s->particle_mass() * Mat3::Identity();
+    b.segment<3>(3 * i).setZero();
+  }
+  const Eigen::VectorXd exact = S.ldlt().solve(b);
+  const auto error = [&](const Eigen::VectorXd& start) {
+    const Eigen::VectorXd e = exact - start;
+    return std::sqrt(e.dot(S * e));
+  };
+  Eigen::VectorXd last_v = last.tail(n3);
+  s->constraints().zero_fixed(last_v);  // as the solver keeps it (z_v is 0 there)
+  const double projected = error(z.tail(n3));
+  EXPECT_LE(projected, error(Eigen::VectorXd::Zero(n3)));
+  EXPECT_LE(projected, error(last_v));
+  // Here the pair does better than the last solve alone (4.8 against 6.5; 16 from zero).
+  EXPECT_LT(projected, 0.8 * error(last_v));
 }
 
 TEST(ReducedNewtonSolver, LinearSolverNames) {
