@@ -31,6 +31,8 @@ class BlockSparseMatrix {
   /// Block row i occupies blocks()[row_start(i)] (its diagonal) to blocks()[row_start(i + 1) - 1].
   int row_start(int i) const { return m_row_start[static_cast<std::size_t>(i)]; }
   int column(int k) const { return m_column[static_cast<std::size_t>(k)]; }
+  /// Index of block (j, i) for block k = (i, j), or -1 when (j, i) is not in the pattern.
+  int transpose(int k) const { return m_transpose[static_cast<std::size_t>(k)]; }
   std::vector<Mat3>& blocks() { return m_blocks; }
   const std::vector<Mat3>& blocks() const { return m_blocks; }
 

@@ -72,9 +72,21 @@ void GridMultigrid::build(const BlockSparseMatrix& fine, int rows, int cols) {
       if (a != b && std::find(list.begin(), list.end(), b) == list.end()) list.push_back(b);
     });
     level.matrix.set_pattern(neighbours);
+    for (int k = 0; k < static_cast<int>(level.matrix.blocks().size()); ++k)
+      if (level.matrix.transpose(k) < 0)
+        throw std::logic_error("GridMultigrid: the fine matrix needs a symmetric pattern");
+    // The terms of the blocks on and right of the diagonal, grouped by coarse block.
+    std::vector<std::vector<GalerkinTerm>> terms(level.matrix.blocks().size());
     for_each_term([&](int k, int a, int b, double w) {
-      level.galerkin.push_back({k, level.matrix.find(a, b), w});
+      if (b >= a)
+        terms[static_cast<std::size_t>(level.matrix.find(a, b))].push_back(
+            {k, static_cast<float>(w)});
     });
+    level.galerkin_start.assign(1, 0);
+    for (const auto& list : terms) {
+      level.galerkin.insert(level.galerkin.end(), list.begin(), list.end());
+      level.galerkin_start.push_back(static_cast<int>(level.galerkin.size()));
+    }
     rows = coarse_rows;
     cols = coarse_cols;
     finer = &level.matrix;
@@ -84,12 +96,22 @@ void GridMultigrid::build(const BlockSparseMatrix& fine, int rows, int cols) {
 void GridMultigrid::update(const BlockSparseMatrix& fine) {
   const BlockSparseMatrix* finer = &fine;
   for (Level& level : m_levels) {
+    const BlockSparseMatrix& a = level.matrix;
     std::vector<Mat3>& coarse = level.matrix.blocks();
-    std::fill(coarse.begin(), coarse.end(), Mat3::Zero());
     const std::vector<Mat3>& blocks = finer->blocks();
-    for (const GalerkinTerm& t : level.galerkin)
-      coarse[static_cast<std::size_t>(t.coarse)] +=
-          t.weight * blocks[static_cast<std::size_t>(t.fine)];
+    for (int i = 0; i < a.rows(); ++i)
+      for (int k = a.row_start(i); k < a.row_start(i + 1); ++k) {
+        if (a.column(k) < i) continue;  // mirrored below, once its transpose is summed
+        Mat3 sum = Mat3::Zero();
+        for (int t = level.galerkin_start[static_cast<std::size_t>(k)];
+             t < level.galerkin_start[static_cast<std::size_t>(k) + 1]; ++t) {
+          const GalerkinTerm& term = level.galerkin[static_cast<std::size_t>(t)];
+          sum.noalias() += static_cast<double>(term.weight) *
+                           blocks[static_cast<std::size_t>(term.fine)];
+        }
+        coarse[static_cast<std::size_t>(k)] = sum;
+        if (a.column(k) > i) coarse[static_cast<std::size_t>(a.transpose(k))] = sum.transpose();
+      }
     level.matrix.invert_diagonal();
     level.matrix.prepare_sweeps();
     finer = &level.matrix;

@@ -10,7 +10,10 @@
 // neighbour). The coarse operator is Galerkin's A_c = P^T A P; bilinear P keeps the fine
 // grid's 9-point pattern (3x3 neighbours) on every coarse grid, and a wider fine pattern
 // (bending springs) stays bounded at two nodes (the pattern is built from P, not assumed).
-// Forming the coarse values is one pass of weighted block additions through a list built once.
+// Forming the coarse values is one pass through a list built once: each coarse block on or right
+// of the diagonal sums its weighted fine blocks (a gather, written once), and each block left of
+// it is the transpose of its mirror, A being symmetric (half the additions of a scatter over
+// every fine block; docs/performance.md, "Forming the coarse grids").
 //
 // The cycle smooths with one forward block Gauss-Seidel sweep before the coarse correction and
 // one backward sweep after it, and solves the coarsest level (at most 16 nodes) by a dense
@@ -45,7 +48,8 @@ class GridMultigrid {
  public:
   /// Builds the levels for `fine`, whose row i is node i of a rows x cols grid (row-major).
   void build(const BlockSparseMatrix& fine, int rows, int cols);
-  /// Forms the coarse operators from `fine`'s current values and factorises the coarsest.
+  /// Forms the coarse operators from `fine`'s current values, which must be symmetric, and
+  /// factorises the coarsest.
   /// `fine` must have its diagonal inverted and its sweeps prepared
   /// (BlockSparseMatrix::invert_diagonal, prepare_sweeps).
   void update(const BlockSparseMatrix& fine);
@@ -55,10 +59,11 @@ class GridMultigrid {
   int levels() const { return static_cast<int>(m_levels.size()) + 1; }
 
  private:
-  /// One term of A_c = P^T A P: coarse block `coarse` += weight * fine block `fine`.
+  /// One term of a coarse block of A_c = P^T A P: weight * fine block `fine` (the weights are
+  /// products of 1, 1/2 and 1/4, exact in float).
   struct GalerkinTerm {
-    int fine, coarse;
-    double weight;
+    int fine;
+    float weight;
   };
   /// A grid coarser than the one before it.
   struct Level {
@@ -67,7 +72,10 @@ class GridMultigrid {
     // k in [parent_start[i], parent_start[i + 1]).
     std::vector<int> parent_start, parent;
     std::vector<double> weight;
+    // Coarse block k (on or right of the diagonal) sums galerkin[galerkin_start[k]] to
+    // galerkin[galerkin_start[k + 1] - 1]; a block left of the diagonal has no terms.
     std::vector<GalerkinTerm> galerkin;
+    std::vector<int> galerkin_start;
     Eigen::VectorXd b, x, finer_residual;
   };
 
