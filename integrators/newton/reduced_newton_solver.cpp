@@ -52,28 +52,32 @@ void ReducedNewtonSolver::set_gamma(double gamma) {
   form_system();
 }
 
-void ReducedNewtonSolver::form_system() {
+template <class SetDiagonal, class AddDiagonal, class SetCoupling>
+void ReducedNewtonSolver::for_each_block(SetDiagonal set_diagonal, AddDiagonal add_diagonal,
+                                         SetCoupling set_coupling) const {
   const SpringSet& springs = m_system.cloth().springs;
   const auto& fixed = m_system.constraints().mask();
   const double mass = m_system.particle_mass();
   const double g = m_gamma, g2 = m_gamma * m_gamma;
-  const std::size_t n = m_jacobian.particle_x.size();
-  m_diagonal.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    m_diagonal[i] = mass * Mat3::Identity() - g * m_jacobian.particle_v[i] - g2 * m_jacobian.particle_x[i];
-  m_coupling.resize(m_jacobian.spring_x.size());
-  for (std::size_t e = 0; e < m_coupling.size(); ++e) {
+  // A fixed particle's row and column are dropped: its diagonal stays M and it couples to
+  // nobody.
+  for (std::size_t i = 0; i < m_jacobian.particle_x.size(); ++i)
+    set_diagonal(i, fixed[i] ? Mat3(mass * Mat3::Identity())
+                             : Mat3(mass * Mat3::Identity() - g * m_jacobian.particle_v[i] -
+                                    g2 * m_jacobian.particle_x[i]));
+  for (std::size_t e = 0; e < m_jacobian.spring_x.size(); ++e) {
     const auto i = static_cast<std::size_t>(springs.first[static_cast<Eigen::Index>(e)]);
     const auto j = static_cast<std::size_t>(springs.second[static_cast<Eigen::Index>(e)]);
     const Mat3 c = g * m_jacobian.spring_v[e] + g2 * m_jacobian.spring_x[e];
-    // K's pair pattern [-J J; J -J] puts +C_e on both diagonal blocks of S. A fixed particle's
-    // row and column are dropped: its diagonal stays M and it couples to nobody.
-    m_diagonal[i] += c;
-    m_diagonal[j] += c;
-    m_coupling[e] = fixed[i] || fixed[j] ? Mat3::Zero() : c;
+    // K's pair pattern [-J J; J -J] puts +C_e on both diagonal blocks of S and -C_e on (i, j)
+    // and (j, i).
+    if (!fixed[i]) add_diagonal(i, c);
+    if (!fixed[j]) add_diagonal(j, c);
+    set_coupling(e, fixed[i] || fixed[j] ? Mat3(Mat3::Zero()) : Mat3(-c));
   }
-  for (std::size_t i = 0; i < n; ++i)
-    if (fixed[i]) m_diagonal[i] = mass * Mat3::Identity();
+}
+
+void ReducedNewtonSolver::form_system() {
   if (m_method == ReducedSolve::sparse_ldlt) {
     if (m_s.size() == 0) build_pattern();
     assemble_matrix();
@@ -96,10 +100,15 @@ void ReducedNewtonSolver::build_block_rows() {
   const SpringSet& springs = m_system.cloth().springs;
   m_matrix.set_pattern(spring_neighbours(springs, m_system.num_particles()));
   m_spring_blocks.resize(2 * static_cast<std::size_t>(springs.size()));
+  m_first_on_pair.assign(static_cast<std::size_t>(springs.size()), 0);
+  std::vector<char> taken(m_matrix.blocks().size(), 0);
   for (Eigen::Index e = 0; e < springs.size(); ++e) {
     const int i = springs.first[e], j = springs.second[e];
-    m_spring_blocks[2 * static_cast<std::size_t>(e)] = m_matrix.find(i, j);
+    const int ij = m_matrix.find(i, j);
+    m_spring_blocks[2 * static_cast<std::size_t>(e)] = ij;
     m_spring_blocks[2 * static_cast<std::size_t>(e) + 1] = m_matrix.find(j, i);
+    m_first_on_pair[static_cast<std::size_t>(e)] = !taken[static_cast<std::size_t>(ij)];
+    taken[static_cast<std::size_t>(ij)] = 1;
   }
   if (m_method == ReducedSolve::multigrid_cg) {
     const ClothParams& grid = m_system.cloth().params;
@@ -108,16 +117,25 @@ void ReducedNewtonSolver::build_block_rows() {
 }
 
 void ReducedNewtonSolver::assemble_block_rows() {
+  // One pass that writes every block, none zeroed first: every off-diagonal block belongs to a
+  // spring, and the first spring on a pair writes it, any other adds (two springs may join
+  // the same pair). C_e is symmetric (the definite Jacobian has no damping position term), so
+  // S_ij = S_ji = -C_e.
   std::vector<Mat3>& blocks = m_matrix.blocks();
-  // Accumulated, not written: two springs may join the same pair.
-  std::fill(blocks.begin(), blocks.end(), Mat3::Zero());
-  for (std::size_t i = 0; i < m_diagonal.size(); ++i)
-    blocks[static_cast<std::size_t>(m_matrix.row_start(static_cast<int>(i)))] = m_diagonal[i];
-  // C_e is symmetric (the definite Jacobian has no damping position term): S_ij = S_ji = -C_e.
-  for (std::size_t e = 0; e < m_coupling.size(); ++e) {
-    blocks[static_cast<std::size_t>(m_spring_blocks[2 * e])] -= m_coupling[e];
-    blocks[static_cast<std::size_t>(m_spring_blocks[2 * e + 1])] -= m_coupling[e];
-  }
+  const auto diagonal = [&](std::size_t i) -> Mat3& {
+    return blocks[static_cast<std::size_t>(m_matrix.row_start(static_cast<int>(i)))];
+  };
+  for_each_block([&](std::size_t i, const Mat3& d) { diagonal(i) = d; },
+                 [&](std::size_t i, const Mat3& c) { diagonal(i) += c; },
+                 [&](std::size_t e, const Mat3& s_ij) {
+                   for (const int k : {m_spring_blocks[2 * e], m_spring_blocks[2 * e + 1]}) {
+                     Mat3& block = blocks[static_cast<std::size_t>(k)];
+                     if (m_first_on_pair[e])
+                       block = s_ij;
+                     else
+                       block += s_ij;
+                   }
+                 });
 }
 
 void ReducedNewtonSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out) {
@@ -181,17 +199,18 @@ void ReducedNewtonSolver::build_pattern() {
 
 void ReducedNewtonSolver::assemble_matrix() {
   double* values = m_s.valuePtr();
-  // Accumulated, not written: two springs may join the same pair.
+  // Accumulated, not written: the diagonal blocks sum every spring's C_e.
   std::fill(values, values + m_s.nonZeros(), 0.0);
   auto add = [&](const BlockSlot& slot, const Mat3& block) {
     for (Eigen::Index b = 0; b < 3; ++b)
       for (Eigen::Index a = 0; a < 3; ++a) values[slot.base + b * slot.stride + a] += block(a, b);
   };
-  for (std::size_t i = 0; i < m_diagonal.size(); ++i) add(m_diagonal_slots[i], m_diagonal[i]);
-  for (std::size_t e = 0; e < m_coupling.size(); ++e) {
-    add(m_spring_slots[2 * e], -m_coupling[e]);
-    add(m_spring_slots[2 * e + 1], -m_coupling[e].transpose());
-  }
+  for_each_block([&](std::size_t i, const Mat3& d) { add(m_diagonal_slots[i], d); },
+                 [&](std::size_t i, const Mat3& c) { add(m_diagonal_slots[i], c); },
+                 [&](std::size_t e, const Mat3& s_ij) {
+                   add(m_spring_slots[2 * e], s_ij);
+                   add(m_spring_slots[2 * e + 1], s_ij.transpose());
+                 });
 }
 
 void ReducedNewtonSolver::jacobian_times(ConstVecRef r_x, const Eigen::VectorXd& w,

@@ -82,6 +82,13 @@ class ReducedNewtonSolver {
     Eigen::Index base = 0, stride = 0;
   };
 
+  /// S's blocks from the last K, D and gamma: set_diagonal(i, block) once per particle first
+  /// (M - gamma D_ii - gamma^2 K_ii, or M on a fixed particle), then per spring e = (i, j)
+  /// add_diagonal(i or j, C_e) for each free end and set_coupling(e, S_ij), S_ij = -C_e when
+  /// both ends are free and 0 otherwise.
+  template <class SetDiagonal, class AddDiagonal, class SetCoupling>
+  void for_each_block(SetDiagonal set_diagonal, AddDiagonal add_diagonal,
+                      SetCoupling set_coupling) const;
   void form_system();
   void build_pattern();
   void assemble_matrix();
@@ -106,12 +113,11 @@ class ReducedNewtonSolver {
   bool m_has_jacobian = false;
   long m_iterations = 0;
   JacobianBlocks m_jacobian;
-  std::vector<Mat3> m_coupling;  // C_e, zero when an end is fixed (S_ij = -C_e on free pairs)
-  std::vector<Mat3> m_diagonal;  // S_ii (M on a fixed particle)
   // CG only: S by block rows, spring e's blocks (i, j) at m_spring_blocks[2e] and (j, i) at
   // [2e + 1], and the multigrid levels of pcg-multigrid.
   detail::BlockSparseMatrix m_matrix;
   std::vector<int> m_spring_blocks;
+  std::vector<char> m_first_on_pair;  // spring e is the first on its pair: it writes the blocks
   detail::GridMultigrid m_multigrid;
   // sparse-direct only: S in a pattern built once, its blocks' slots, the symbolic analysis.
   Eigen::SparseMatrix<double> m_s;
