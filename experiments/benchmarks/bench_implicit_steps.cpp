@@ -7,7 +7,8 @@
 // Each benchmark takes a few steps before timing (the first step holds the one-time setup:
 // patterns, multigrid levels, ARKODE's memory, first touch of the arrays), then times a fixed
 // number, so that a run stays bounded at 128 x 128 and measures a warmed-up solver. The CG
-// iterations of implicit-euler follow the motion (3 to 17 a step on the sheet), so it times
+// iterations of implicit-euler follow the motion (3 to 17 a step on the sheet when measured
+// with the last dv as CG's start), so it times
 // 60 steps, 2 s of motion (docs/performance.md, "Over 60 steps"); an ARKODE step costs seconds.
 #include <benchmark/benchmark.h>
 

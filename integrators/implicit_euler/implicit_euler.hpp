@@ -14,8 +14,9 @@ namespace drape {
 /// with the definite Jacobian, fixed particles' dv prescribed (filtered out of the solve) and
 /// the 3N system solved by CG preconditioned by a multigrid cycle (`pcg-multigrid`, the
 /// default) or by its block diagonal (`pcg-reduced`), both started from the S-orthogonal
-/// projection onto the last two steps' dv (CgStart::projected) and run to the relative residual `linear_tolerance` (default 1e-3), or by a sparse LDLT
-/// factorisation (`sparse-direct`). Then the projection of docs/model.md section 5. First order,
+/// projection onto the last two steps' dv (CgStart::projected) and run to the relative
+/// residual `linear_tolerance` (default 1e-3), or by a sparse LDLT factorisation
+/// (`sparse-direct`). Then the projection of docs/model.md section 5. First order,
 /// unconditionally stable for the linearised problem; one force evaluation and one Jacobian
 /// per step. With `solve` = converged, backward Euler itself: the one stage
 /// z = y_n + h f(t_{n+1}, z) minimised by the line-search Newton of the ARKODE stages

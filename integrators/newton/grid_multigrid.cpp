@@ -33,6 +33,11 @@ Eigen::MatrixXd dense(const BlockSparseMatrix& a) {
 
 void GridMultigrid::build(const BlockSparseMatrix& fine, int rows, int cols) {
   m_levels.clear();
+  // update() writes each coarse block left of the diagonal as its mirror's transpose, which
+  // is P' A P only for a symmetric A (the coarse patterns are then symmetric too).
+  for (int k = 0; k < static_cast<int>(fine.blocks().size()); ++k)
+    if (fine.transpose(k) < 0)
+      throw std::logic_error("GridMultigrid: the fine matrix needs a symmetric pattern");
   const BlockSparseMatrix* finer = &fine;
   // Levels are held by value in a vector that grows: reserve so `finer` stays valid.
   int levels = 0;
@@ -72,9 +77,6 @@ void GridMultigrid::build(const BlockSparseMatrix& fine, int rows, int cols) {
       if (a != b && std::find(list.begin(), list.end(), b) == list.end()) list.push_back(b);
     });
     level.matrix.set_pattern(neighbours);
-    for (int k = 0; k < static_cast<int>(level.matrix.blocks().size()); ++k)
-      if (level.matrix.transpose(k) < 0)
-        throw std::logic_error("GridMultigrid: the fine matrix needs a symmetric pattern");
     // The terms of the blocks on and right of the diagonal, grouped by coarse block.
     std::vector<std::vector<GalerkinTerm>> terms(level.matrix.blocks().size());
     for_each_term([&](int k, int a, int b, double w) {

@@ -108,7 +108,9 @@ void ReducedNewtonSolver::build_block_rows() {
     m_spring_blocks[2 * static_cast<std::size_t>(e)] = ij;
     m_spring_blocks[2 * static_cast<std::size_t>(e) + 1] = m_matrix.find(j, i);
     m_first_on_pair[static_cast<std::size_t>(e)] = !taken[static_cast<std::size_t>(ij)];
+    // Both orientations: a later spring on (j, i) shares the pair's two blocks.
     taken[static_cast<std::size_t>(ij)] = 1;
+    taken[static_cast<std::size_t>(m_matrix.transpose(ij))] = 1;
   }
   if (m_method == ReducedSolve::multigrid_cg) {
     const ClothParams& grid = m_system.cloth().params;
@@ -278,7 +280,9 @@ bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorX
 void ReducedNewtonSolver::start_projected(const Eigen::VectorXd& b, Eigen::VectorXd& z_v) {
   // z_v = U c with (U' S U) c = U' b, U the stored solves: the S-orthogonal projection of the
   // solution onto span U. The 2x2 system is solved on its eigenvalues above a relative cutoff,
-  // so that parallel, zero or missing (empty) columns drop out instead of dividing by zero.
+  // so that parallel, zero or missing (empty) columns drop out instead of dividing by zero; the
+  // cutoff 1e-10 stays above the Gram entries' rounding (about 3N machine epsilons relative,
+  // 5e-12 at 128 x 128), below which the projection's guarantee would not hold.
   Eigen::Matrix2d gram = Eigen::Matrix2d::Zero();
   Eigen::Vector2d projected_b = Eigen::Vector2d::Zero();
   for (std::size_t a = 0; a < m_history.size(); ++a) {
@@ -294,9 +298,15 @@ void ReducedNewtonSolver::start_projected(const Eigen::VectorXd& b, Eigen::Vecto
                               m_history_products[static_cast<std::size_t>(c)]) +
                           m_history[static_cast<std::size_t>(c)].dot(
                               m_history_products[static_cast<std::size_t>(a)]));
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(gram);
-  const double cutoff = 1e-12 * eigen.eigenvalues().cwiseAbs().maxCoeff();
   Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  if (!gram.allFinite() || !projected_b.allFinite()) {  // a diverged solve: forget it, start at 0
+    for (Eigen::VectorXd& u : m_history) u.setZero(b.size());
+    z_v.setZero(b.size());
+    m_residual = b;
+    return;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(gram);
+  const double cutoff = 1e-10 * eigen.eigenvalues().cwiseAbs().maxCoeff();
   for (Eigen::Index k = 0; k < 2; ++k)
     if (eigen.eigenvalues()(k) > cutoff)
       c += eigen.eigenvectors().col(k) *
