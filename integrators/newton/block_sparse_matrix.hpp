@@ -33,6 +33,8 @@ class BlockSparseMatrix {
   int column(int k) const { return m_column[static_cast<std::size_t>(k)]; }
   /// Index of block (j, i) for block k = (i, j), or -1 when (j, i) is not in the pattern.
   int transpose(int k) const { return m_transpose[static_cast<std::size_t>(k)]; }
+  /// True when every block (i, j) of the pattern has its (j, i).
+  bool symmetric_pattern() const { return m_symmetric_pattern; }
   std::vector<Mat3>& blocks() { return m_blocks; }
   const std::vector<Mat3>& blocks() const { return m_blocks; }
 

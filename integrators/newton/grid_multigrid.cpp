@@ -35,9 +35,8 @@ void GridMultigrid::build(const BlockSparseMatrix& fine, int rows, int cols) {
   m_levels.clear();
   // update() writes each coarse block left of the diagonal as its mirror's transpose, which
   // is P' A P only for a symmetric A (the coarse patterns are then symmetric too).
-  for (int k = 0; k < static_cast<int>(fine.blocks().size()); ++k)
-    if (fine.transpose(k) < 0)
-      throw std::logic_error("GridMultigrid: the fine matrix needs a symmetric pattern");
+  if (!fine.symmetric_pattern())
+    throw std::logic_error("GridMultigrid: the fine matrix needs a symmetric pattern");
   const BlockSparseMatrix* finer = &fine;
   // Levels are held by value in a vector that grows: reserve so `finer` stays valid.
   int levels = 0;

@@ -298,7 +298,6 @@ void ReducedNewtonSolver::start_projected(const Eigen::VectorXd& b, Eigen::Vecto
                               m_history_products[static_cast<std::size_t>(c)]) +
                           m_history[static_cast<std::size_t>(c)].dot(
                               m_history_products[static_cast<std::size_t>(a)]));
-  Eigen::Vector2d c = Eigen::Vector2d::Zero();
   if (!gram.allFinite() || !projected_b.allFinite()) {  // a diverged solve: forget it, start at 0
     for (Eigen::VectorXd& u : m_history) u.setZero(b.size());
     z_v.setZero(b.size());
@@ -307,6 +306,7 @@ void ReducedNewtonSolver::start_projected(const Eigen::VectorXd& b, Eigen::Vecto
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(gram);
   const double cutoff = 1e-10 * eigen.eigenvalues().cwiseAbs().maxCoeff();
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
   for (Eigen::Index k = 0; k < 2; ++k)
     if (eigen.eigenvalues()(k) > cutoff)
       c += eigen.eigenvectors().col(k) *

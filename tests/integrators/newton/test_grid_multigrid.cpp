@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <functional>
+#include <stdexcept>
 
 #include "integrators/newton/grid_multigrid.hpp"
 #include "tests/support/grid_matrix.hpp"
@@ -33,6 +34,14 @@ TEST(GridMultigrid, SolvesExactlyOnACoarsestSizeGrid) {
   Eigen::VectorXd product;
   a.multiply(cycle(mg, a, b), product);
   EXPECT_LT((product - b).norm(), 1e-10 * b.norm());
+}
+
+// update() mirrors the coarse blocks left of the diagonal, which needs a symmetric A.
+TEST(GridMultigrid, NeedsASymmetricPattern) {
+  detail::BlockSparseMatrix a;
+  a.set_pattern({{1}, {}});
+  detail::GridMultigrid mg;
+  EXPECT_THROW(mg.build(a, 1, 2), std::logic_error);
 }
 
 TEST(GridMultigrid, IsSymmetricPositiveDefinite) {
