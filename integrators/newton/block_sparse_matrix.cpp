@@ -78,29 +78,24 @@ void BlockSparseMatrix::multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out)
   }
 }
 
-void BlockSparseMatrix::invert_diagonal() {
-  for (int i = 0; i < rows(); ++i)
-    m_diagonal_inverse[static_cast<std::size_t>(i)] =
-        m_blocks[static_cast<std::size_t>(row_start(i))].inverse();
-}
-
-void BlockSparseMatrix::prepare_sweeps() {
+void BlockSparseMatrix::finish_row(int i, bool sweeps) {
+  const auto diagonal = static_cast<std::size_t>(row_start(i));
+  Mat3& inverse = m_diagonal_inverse[static_cast<std::size_t>(i)];
+  inverse = m_blocks[diagonal].inverse();
+  if (!sweeps) return;
   if (!m_symmetric_pattern)
     throw std::logic_error("BlockSparseMatrix: the sweeps need a symmetric pattern");
-  for (int i = 0; i < rows(); ++i) {
-    const Mat3& inverse = m_diagonal_inverse[static_cast<std::size_t>(i)];
-    m_sweep_blocks[static_cast<std::size_t>(row_start(i))] =
-        (0.5 * (inverse + inverse.transpose())).cast<float>();
-    // Each pair once, from the block right of the diagonal: (i, j) and (j, i) = its transpose.
-    for (int k = m_upper_start[static_cast<std::size_t>(i)]; k < row_start(i + 1); ++k) {
-      const int t = m_transpose[static_cast<std::size_t>(k)];
-      const Eigen::Matrix3f upper = (0.5 * (m_blocks[static_cast<std::size_t>(k)] +
-                                            m_blocks[static_cast<std::size_t>(t)].transpose()))
-                                        .cast<float>();
-      m_sweep_blocks[static_cast<std::size_t>(k)] = upper;
-      m_sweep_blocks[static_cast<std::size_t>(t)] = upper.transpose();
-    }
+  m_sweep_blocks[diagonal] = (0.5 * (inverse + inverse.transpose())).cast<float>();
+  for (int k = m_upper_start[static_cast<std::size_t>(i)]; k < row_start(i + 1); ++k) {
+    const Eigen::Matrix3f upper = m_blocks[static_cast<std::size_t>(k)].cast<float>();
+    m_sweep_blocks[static_cast<std::size_t>(k)] = upper;
+    m_sweep_blocks[static_cast<std::size_t>(m_transpose[static_cast<std::size_t>(k)])] =
+        upper.transpose();
   }
+}
+
+void BlockSparseMatrix::finish_rows(bool sweeps) {
+  for (int i = 0; i < rows(); ++i) finish_row(i, sweeps);
 }
 
 void BlockSparseMatrix::precondition_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& out) const {

@@ -9,9 +9,17 @@
 // once, so at 128 x 128 (10.6 MB of double blocks) a CG iteration streams about 32 MB, and the
 // step's cost per particle grew with the grid once that no longer stayed in the cache. The
 // sweeps only precondition: CG's product and residuals stay in double, so the solution's accuracy
-// is CG's tolerance, not float's. The copy is rounded from the symmetric part, (A_ij + A_ji') / 2
-// and D_i^-1's symmetric part, so that the cycle stays exactly symmetric (CG needs a symmetric
-// preconditioner) even where the double blocks are transposes only to round-off (Galerkin sums).
+// is CG's tolerance, not float's. The copy takes each pair of off-diagonal blocks from the one
+// right of the diagonal (its transpose left of it) and the symmetric part of D_i^-1, so that the
+// cycle is exactly symmetric (CG needs a symmetric preconditioner) even where the double blocks
+// are transposes only to round-off. For the symmetric matrices it serves (S, whose couplings
+// -C_e are symmetric, and the Galerkin coarse operators, whose blocks left of the diagonal are
+// written as transposes) that is A rounded to float.
+//
+// A row is finished (its diagonal inverted, its share of the copy written) by finish_row() as
+// soon as its diagonal and right blocks hold their values, so that an assembly writing row by
+// row does it while the row is in cache instead of in two more passes over the matrix
+// (docs/performance.md, "Assembling S row by row").
 #include <vector>
 
 #include "core/model/state.hpp"
@@ -40,12 +48,14 @@ class BlockSparseMatrix {
 
   /// out = A p.
   void multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const;
-  /// Inverts the diagonal blocks for precondition_jacobi(); they must be invertible (symmetric
-  /// positive definite for an SPD matrix).
-  void invert_diagonal();
-  /// Forms the sweeps' single-precision copy from the current values (after invert_diagonal());
-  /// the pattern must be symmetric.
-  void prepare_sweeps();
+  /// Inverts row i's diagonal block (for precondition_jacobi() and the sweeps; it must be
+  /// invertible, symmetric positive definite for an SPD matrix) and, with `sweeps`, writes row
+  /// i's share of the sweeps' single-precision copy: D_i^-1's symmetric part and the blocks right
+  /// of the diagonal, with their transposes at the mirrors left of it (in rows below). Needs row
+  /// i's diagonal and right blocks final; with `sweeps`, a symmetric pattern.
+  void finish_row(int i, bool sweeps);
+  /// finish_row() for every row.
+  void finish_rows(bool sweeps);
   /// out = D^-1 r, D the block diagonal.
   void precondition_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& out) const;
   /// One block Gauss-Seidel sweep on A x = b with rows descending:

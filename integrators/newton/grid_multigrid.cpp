@@ -100,7 +100,7 @@ void GridMultigrid::update(const BlockSparseMatrix& fine) {
     const BlockSparseMatrix& a = level.matrix;
     std::vector<Mat3>& coarse = level.matrix.blocks();
     const std::vector<Mat3>& blocks = finer->blocks();
-    for (int i = 0; i < a.rows(); ++i)
+    for (int i = 0; i < a.rows(); ++i) {
       for (int k = a.row_start(i); k < a.row_start(i + 1); ++k) {
         if (a.column(k) < i) continue;  // mirrored below, once its transpose is summed
         Mat3 sum = Mat3::Zero();
@@ -113,8 +113,8 @@ void GridMultigrid::update(const BlockSparseMatrix& fine) {
         coarse[static_cast<std::size_t>(k)] = sum;
         if (a.column(k) > i) coarse[static_cast<std::size_t>(a.transpose(k))] = sum.transpose();
       }
-    level.matrix.invert_diagonal();
-    level.matrix.prepare_sweeps();
+      level.matrix.finish_row(i, true);  // its diagonal and right blocks are written
+    }
     finer = &level.matrix;
   }
   m_coarsest.compute(dense(*finer));

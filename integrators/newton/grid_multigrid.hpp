@@ -51,7 +51,7 @@ class GridMultigrid {
   /// Forms the coarse operators from `fine`'s current values, which must be symmetric, and
   /// factorises the coarsest.
   /// `fine` must have its diagonal inverted and its sweeps prepared
-  /// (BlockSparseMatrix::invert_diagonal, prepare_sweeps).
+  /// (BlockSparseMatrix::finish_row with sweeps).
   void update(const BlockSparseMatrix& fine);
   /// out = B r, B the cycle started from zero.
   void apply(const BlockSparseMatrix& fine, const Eigen::VectorXd& r, Eigen::VectorXd& out);

@@ -52,29 +52,85 @@ void ReducedNewtonSolver::set_gamma(double gamma) {
   form_system();
 }
 
-template <class SetDiagonal, class AddDiagonal, class SetCoupling>
-void ReducedNewtonSolver::for_each_block(SetDiagonal set_diagonal, AddDiagonal add_diagonal,
-                                         SetCoupling set_coupling) const {
-  const SpringSet& springs = m_system.cloth().springs;
+template <class Visit, class FinishRow>
+void ReducedNewtonSolver::for_each_block(Visit visit, FinishRow finish_row) const {
   const auto& fixed = m_system.constraints().mask();
   const double mass = m_system.particle_mass();
   const double g = m_gamma, g2 = m_gamma * m_gamma;
-  // A fixed particle's row and column are dropped: its diagonal stays M and it couples to
-  // nobody.
-  for (std::size_t i = 0; i < m_jacobian.particle_x.size(); ++i)
-    set_diagonal(i, fixed[i] ? Mat3(mass * Mat3::Identity())
-                             : Mat3(mass * Mat3::Identity() - g * m_jacobian.particle_v[i] -
-                                    g2 * m_jacobian.particle_x[i]));
-  for (std::size_t e = 0; e < m_jacobian.spring_x.size(); ++e) {
-    const auto i = static_cast<std::size_t>(springs.first[static_cast<Eigen::Index>(e)]);
-    const auto j = static_cast<std::size_t>(springs.second[static_cast<Eigen::Index>(e)]);
-    const Mat3 c = g * m_jacobian.spring_v[e] + g2 * m_jacobian.spring_x[e];
-    // K's pair pattern [-J J; J -J] puts +C_e on both diagonal blocks of S and -C_e on (i, j)
-    // and (j, i).
-    if (!fixed[i]) add_diagonal(i, c);
-    if (!fixed[j]) add_diagonal(j, c);
-    set_coupling(e, fixed[i] || fixed[j] ? Mat3(Mat3::Zero()) : Mat3(-c));
+  // K's pair pattern [-J J; J -J] puts +C_e on both diagonal blocks of S and -C_e on (i, j) and
+  // (j, i). The blocks (i, j) and (j, i) sum the same springs in the same order, so S is as
+  // symmetric as each C_e.
+  const auto coupling = [&](int k) {
+    Mat3 sum = Mat3::Zero();
+    for (int t = m_block_spring_start[static_cast<std::size_t>(k)];
+         t < m_block_spring_start[static_cast<std::size_t>(k) + 1]; ++t) {
+      const auto e = static_cast<std::size_t>(m_block_springs[static_cast<std::size_t>(t)]);
+      sum.noalias() += g * m_jacobian.spring_v[e] + g2 * m_jacobian.spring_x[e];
+    }
+    return sum;
+  };
+  const int n = static_cast<int>(m_pattern_start.size()) - 1;
+  for (int i = 0; i < n; ++i) {
+    const auto row = static_cast<std::size_t>(i);
+    const int start = m_pattern_start[row], end = m_pattern_start[row + 1];
+    if (fixed[row]) {
+      // A fixed particle's row and column are dropped: its diagonal stays M and it couples to
+      // nobody.
+      visit(start, i, i, Mat3(mass * Mat3::Identity()));
+      for (int k = start + 1; k < end; ++k)
+        visit(k, i, m_pattern_column[static_cast<std::size_t>(k)], Mat3(Mat3::Zero()));
+    } else {
+      visit(start, i, i,
+            Mat3(mass * Mat3::Identity() - g * m_jacobian.particle_v[row] -
+                 g2 * m_jacobian.particle_x[row] + coupling(start)));
+      for (int k = start + 1; k < end; ++k) {
+        const int j = m_pattern_column[static_cast<std::size_t>(k)];
+        visit(k, i, j, fixed[static_cast<std::size_t>(j)] ? Mat3(Mat3::Zero()) : Mat3(-coupling(k)));
+      }
+    }
+    finish_row(i);
   }
+}
+
+std::vector<std::vector<int>> ReducedNewtonSolver::build_gather() {
+  // The pattern depends on the springs alone, so it serves every later step, whatever the fixed
+  // set (fixed particles' couplings are written as zeros).
+  const SpringSet& springs = m_system.cloth().springs;
+  const int n = m_system.num_particles();
+  std::vector<std::vector<int>> neighbours = spring_neighbours(springs, n);
+  m_pattern_start.assign(1, 0);
+  m_pattern_column.clear();
+  for (int i = 0; i < n; ++i) {
+    m_pattern_column.push_back(i);
+    const auto& list = neighbours[static_cast<std::size_t>(i)];
+    m_pattern_column.insert(m_pattern_column.end(), list.begin(), list.end());
+    m_pattern_start.push_back(static_cast<int>(m_pattern_column.size()));
+  }
+  const auto block_of = [&](int i, int j) {
+    const auto& list = neighbours[static_cast<std::size_t>(i)];
+    const int start = m_pattern_start[static_cast<std::size_t>(i)];
+    return static_cast<std::size_t>(
+        i == j ? start
+               : start + 1 + static_cast<int>(std::lower_bound(list.begin(), list.end(), j) -
+                                               list.begin()));
+  };
+  // Each spring joins four blocks; the lists are filled in spring order (counted, then placed).
+  const auto for_each_term = [&](auto&& term) {
+    for (Eigen::Index e = 0; e < springs.size(); ++e) {
+      const int i = springs.first[e], j = springs.second[e];
+      for (const std::size_t k : {block_of(i, i), block_of(j, j), block_of(i, j), block_of(j, i)})
+        term(k, static_cast<int>(e));
+    }
+  };
+  std::vector<int> count(m_pattern_column.size() + 1, 0);
+  for_each_term([&](std::size_t k, int) { ++count[k + 1]; });
+  for (std::size_t k = 1; k < count.size(); ++k) count[k] += count[k - 1];
+  m_block_spring_start = count;
+  m_block_springs.resize(static_cast<std::size_t>(count.back()));
+  for_each_term([&](std::size_t k, int e) {
+    m_block_springs[static_cast<std::size_t>(count[k]++)] = e;
+  });
+  return neighbours;
 }
 
 void ReducedNewtonSolver::form_system() {
@@ -86,32 +142,11 @@ void ReducedNewtonSolver::form_system() {
   }
   if (m_matrix.rows() == 0) build_block_rows();
   assemble_block_rows();
-  // Each diagonal block is symmetric positive definite (a principal block of S).
-  m_matrix.invert_diagonal();
-  if (m_method == ReducedSolve::multigrid_cg) {
-    m_matrix.prepare_sweeps();
-    m_multigrid.update(m_matrix);
-  }
+  if (m_method == ReducedSolve::multigrid_cg) m_multigrid.update(m_matrix);
 }
 
 void ReducedNewtonSolver::build_block_rows() {
-  // Like the compressed pattern, the block rows depend on the springs alone: fixed particles'
-  // couplings are stored as zeros.
-  const SpringSet& springs = m_system.cloth().springs;
-  m_matrix.set_pattern(spring_neighbours(springs, m_system.num_particles()));
-  m_spring_blocks.resize(2 * static_cast<std::size_t>(springs.size()));
-  m_first_on_pair.assign(static_cast<std::size_t>(springs.size()), 0);
-  std::vector<char> taken(m_matrix.blocks().size(), 0);
-  for (Eigen::Index e = 0; e < springs.size(); ++e) {
-    const int i = springs.first[e], j = springs.second[e];
-    const int ij = m_matrix.find(i, j);
-    m_spring_blocks[2 * static_cast<std::size_t>(e)] = ij;
-    m_spring_blocks[2 * static_cast<std::size_t>(e) + 1] = m_matrix.find(j, i);
-    m_first_on_pair[static_cast<std::size_t>(e)] = !taken[static_cast<std::size_t>(ij)];
-    // Both orientations: a later spring on (j, i) shares the pair's two blocks.
-    taken[static_cast<std::size_t>(ij)] = 1;
-    taken[static_cast<std::size_t>(m_matrix.transpose(ij))] = 1;
-  }
+  m_matrix.set_pattern(build_gather());  // the same row pattern: diagonal first, then ascending
   if (m_method == ReducedSolve::multigrid_cg) {
     const ClothParams& grid = m_system.cloth().params;
     m_multigrid.build(m_matrix, grid.rows, grid.cols);
@@ -119,25 +154,13 @@ void ReducedNewtonSolver::build_block_rows() {
 }
 
 void ReducedNewtonSolver::assemble_block_rows() {
-  // One pass that writes every block, none zeroed first: every off-diagonal block belongs to a
-  // spring, and the first spring on a pair writes it, any other adds (two springs may join
-  // the same pair). C_e is symmetric (the definite Jacobian has no damping position term), so
-  // S_ij = S_ji = -C_e.
+  // Each row finished while in cache: its diagonal inverted (block Jacobi, the sweeps) and, for
+  // the multigrid, its share of the sweeps' single-precision copy. Each diagonal block is
+  // symmetric positive definite (a principal block of S).
   std::vector<Mat3>& blocks = m_matrix.blocks();
-  const auto diagonal = [&](std::size_t i) -> Mat3& {
-    return blocks[static_cast<std::size_t>(m_matrix.row_start(static_cast<int>(i)))];
-  };
-  for_each_block([&](std::size_t i, const Mat3& d) { diagonal(i) = d; },
-                 [&](std::size_t i, const Mat3& c) { diagonal(i) += c; },
-                 [&](std::size_t e, const Mat3& s_ij) {
-                   for (const int k : {m_spring_blocks[2 * e], m_spring_blocks[2 * e + 1]}) {
-                     Mat3& block = blocks[static_cast<std::size_t>(k)];
-                     if (m_first_on_pair[e])
-                       block = s_ij;
-                     else
-                       block += s_ij;
-                   }
-                 });
+  const bool sweeps = m_method == ReducedSolve::multigrid_cg;
+  for_each_block([&](int k, int, int, const Mat3& block) { blocks[static_cast<std::size_t>(k)] = block; },
+                 [&](int i) { m_matrix.finish_row(i, sweeps); });
 }
 
 void ReducedNewtonSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out) {
@@ -154,11 +177,10 @@ void ReducedNewtonSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd
 
 void ReducedNewtonSolver::build_pattern() {
   // Column block q holds the row blocks of q itself and of its spring neighbours, ascending;
-  // its three columns share that row list. The pattern depends on the springs alone, so it and
-  // the fill-reducing ordering serve every later step, whatever the fixed set.
-  const SpringSet& springs = m_system.cloth().springs;
+  // its three columns share that row list. Like the row pattern, it and the fill-reducing
+  // ordering serve every later step, whatever the fixed set.
+  std::vector<std::vector<int>> rows = build_gather();
   const int n = m_system.num_particles();
-  std::vector<std::vector<int>> rows = spring_neighbours(springs, n);
   for (int q = 0; q < n; ++q) {
     auto& list = rows[static_cast<std::size_t>(q)];
     list.insert(std::upper_bound(list.begin(), list.end(), q), q);
@@ -182,53 +204,55 @@ void ReducedNewtonSolver::build_pattern() {
     }
   }
   outer[n3] = static_cast<int>(column_start.back());
-  auto slot = [&](int p, int q) {
-    const auto& list = rows[static_cast<std::size_t>(q)];
-    const auto rank = std::lower_bound(list.begin(), list.end(), p) - list.begin();
-    return BlockSlot{column_start[static_cast<std::size_t>(q)] + 3 * rank,
-                     3 * static_cast<Eigen::Index>(list.size())};
-  };
-  m_diagonal_slots.resize(static_cast<std::size_t>(n));
-  for (int q = 0; q < n; ++q) m_diagonal_slots[static_cast<std::size_t>(q)] = slot(q, q);
-  m_spring_slots.resize(2 * static_cast<std::size_t>(springs.size()));
-  for (Eigen::Index e = 0; e < springs.size(); ++e) {
-    m_spring_slots[2 * static_cast<std::size_t>(e)] = slot(springs.first[e], springs.second[e]);
-    m_spring_slots[2 * static_cast<std::size_t>(e) + 1] = slot(springs.second[e], springs.first[e]);
-  }
+  // Block (p, q) of the row pattern: rows 3p.. of columns 3q.. (rank of p in column q's list).
+  m_block_slots.resize(m_pattern_column.size());
+  for (int p = 0; p < n; ++p)
+    for (int k = m_pattern_start[static_cast<std::size_t>(p)];
+         k < m_pattern_start[static_cast<std::size_t>(p) + 1]; ++k) {
+      const auto q = static_cast<std::size_t>(m_pattern_column[static_cast<std::size_t>(k)]);
+      const auto rank = std::lower_bound(rows[q].begin(), rows[q].end(), p) - rows[q].begin();
+      m_block_slots[static_cast<std::size_t>(k)] =
+          BlockSlot{column_start[q] + 3 * rank, 3 * static_cast<Eigen::Index>(rows[q].size())};
+    }
   m_s.coeffs().setZero();
   m_ldlt.analyzePattern(m_s);
 }
 
 void ReducedNewtonSolver::assemble_matrix() {
+  // Every entry of the pattern is a block of the row pattern: written once, nothing zeroed.
   double* values = m_s.valuePtr();
-  // Accumulated, not written: the diagonal blocks sum every spring's C_e.
-  std::fill(values, values + m_s.nonZeros(), 0.0);
-  auto add = [&](const BlockSlot& slot, const Mat3& block) {
-    for (Eigen::Index b = 0; b < 3; ++b)
-      for (Eigen::Index a = 0; a < 3; ++a) values[slot.base + b * slot.stride + a] += block(a, b);
-  };
-  for_each_block([&](std::size_t i, const Mat3& d) { add(m_diagonal_slots[i], d); },
-                 [&](std::size_t i, const Mat3& c) { add(m_diagonal_slots[i], c); },
-                 [&](std::size_t e, const Mat3& s_ij) {
-                   add(m_spring_slots[2 * e], s_ij);
-                   add(m_spring_slots[2 * e + 1], s_ij.transpose());
-                 });
+  for_each_block(
+      [&](int k, int, int, const Mat3& block) {
+        const BlockSlot& slot = m_block_slots[static_cast<std::size_t>(k)];
+        for (Eigen::Index b = 0; b < 3; ++b)
+          for (Eigen::Index a = 0; a < 3; ++a) values[slot.base + b * slot.stride + a] = block(a, b);
+      },
+      [](int) {});
 }
 
-void ReducedNewtonSolver::jacobian_times(ConstVecRef r_x, const Eigen::VectorXd& w,
+void ReducedNewtonSolver::jacobian_times(ConstVecRef r_x, ConstVecRef r_v,
                                          Eigen::VectorXd& out) const {
+  // D's columns enter only at fixed particles (D r_v|fixed): D's blocks are read there alone,
+  // about a third of the blocks this pass would otherwise stream.
   const SpringSet& springs = m_system.cloth().springs;
+  const auto& fixed = m_system.constraints().mask();
   out.resize(r_x.size());
   for (std::size_t i = 0; i < m_jacobian.particle_x.size(); ++i) {
     const auto k = static_cast<Eigen::Index>(i);
-    particle(out, k).noalias() =
-        m_jacobian.particle_x[i] * particle(r_x, k) + m_jacobian.particle_v[i] * particle(w, k);
+    particle(out, k).noalias() = m_jacobian.particle_x[i] * particle(r_x, k);
+    if (fixed[i]) particle(out, k).noalias() += m_jacobian.particle_v[i] * particle(r_v, k);
   }
   for (Eigen::Index e = 0; e < springs.size(); ++e) {
     const auto s = static_cast<std::size_t>(e);
     const int i = springs.first[e], j = springs.second[e];
-    const Vec3 df = m_jacobian.spring_x[s] * (particle(r_x, j) - particle(r_x, i)) +
-                    m_jacobian.spring_v[s] * (particle(w, j) - particle(w, i));
+    Vec3 df = m_jacobian.spring_x[s] * (particle(r_x, j) - particle(r_x, i));
+    const bool fixed_i = fixed[static_cast<std::size_t>(i)] != 0;
+    const bool fixed_j = fixed[static_cast<std::size_t>(j)] != 0;
+    if (fixed_i || fixed_j) {
+      const Vec3 w_i = fixed_i ? Vec3(particle(r_v, i)) : Vec3::Zero();
+      const Vec3 w_j = fixed_j ? Vec3(particle(r_v, j)) : Vec3::Zero();
+      df.noalias() += m_jacobian.spring_v[s] * (w_j - w_i);
+    }
     particle(out, i) += df;
     particle(out, j) -= df;
   }
@@ -240,9 +264,7 @@ bool ReducedNewtonSolver::solve(ConstVecRef r, VecRef z, CgStart start, double t
   const ConstraintSet& constraints = m_system.constraints();
   // b = M r_v + gamma (K r_x + D r_v|fixed): the fixed particles' known z enters through the
   // columns of K and D, whose fixed rows are dropped.
-  m_fixed_r_v.setZero(n3);
-  for (const int i : constraints.fixed_particles()) particle(m_fixed_r_v, i) = particle(r_v, i);
-  jacobian_times(r_x, m_fixed_r_v, m_product);
+  jacobian_times(r_x, r_v, m_product);
   m_b = m_system.particle_mass() * r_v + m_gamma * m_product;
   constraints.zero_fixed(m_b);
   const bool converged =

@@ -82,21 +82,26 @@ class ReducedNewtonSolver {
     Eigen::Index base = 0, stride = 0;
   };
 
-  /// S's blocks from the last K, D and gamma: set_diagonal(i, block) once per particle first
-  /// (M - gamma D_ii - gamma^2 K_ii, or M on a fixed particle), then per spring e = (i, j)
-  /// add_diagonal(i or j, C_e) for each free end and set_coupling(e, S_ij), S_ij = -C_e when
-  /// both ends are free and 0 otherwise.
-  template <class SetDiagonal, class AddDiagonal, class SetCoupling>
-  void for_each_block(SetDiagonal set_diagonal, AddDiagonal add_diagonal,
-                      SetCoupling set_coupling) const;
+  /// S's blocks from the last K, D and gamma, row by row: visit(k, i, j, S_ij) for each block
+  /// of row i in the pattern's order (the diagonal first, then the columns ascending; k counts
+  /// the blocks), then finish_row(i). S_ii = M - gamma D_ii - gamma^2 K_ii + sum of C_e over the
+  /// springs at i, or M on a fixed particle; S_ij = -sum of C_e over the springs on (i, j) when
+  /// both ends are free, 0 otherwise (C_e = gamma D_e + gamma^2 K_e). Each block is written
+  /// once, gathered from the spring blocks it sums, so S streams out in memory order
+  /// (docs/performance.md, "Assembling S row by row").
+  template <class Visit, class FinishRow>
+  void for_each_block(Visit visit, FinishRow finish_row) const;
+  /// Builds the row pattern and its spring lists; returns each particle's spring neighbours.
+  std::vector<std::vector<int>> build_gather();
   void form_system();
   void build_pattern();
   void assemble_matrix();
   void build_block_rows();
   void assemble_block_rows();
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out);
-  /// out = K r_x + D w with the unclamped columns of fixed particles (rows not zeroed).
-  void jacobian_times(ConstVecRef r_x, const Eigen::VectorXd& w, Eigen::VectorXd& out) const;
+  /// out = K r_x + D r_v|fixed (r_v on the fixed particles, 0 elsewhere), with the unclamped
+  /// columns of fixed particles (rows not zeroed).
+  void jacobian_times(ConstVecRef r_x, ConstVecRef r_v, Eigen::VectorXd& out) const;
   bool solve_reduced(const Eigen::VectorXd& b, Eigen::VectorXd& z_v, CgStart start,
                      double tolerance);
   /// z_v and m_residual = b - S z_v for CgStart::projected, from m_history.
@@ -113,17 +118,21 @@ class ReducedNewtonSolver {
   bool m_has_jacobian = false;
   long m_iterations = 0;
   JacobianBlocks m_jacobian;
-  // CG only: S by block rows, spring e's blocks (i, j) at m_spring_blocks[2e] and (j, i) at
-  // [2e + 1], and the multigrid levels of pcg-multigrid.
+  // S's block pattern by rows, as for_each_block visits it: row i's blocks are k in
+  // [pattern_start[i], pattern_start[i + 1]), block k in column pattern_column[k] and the sum of
+  // the springs block_springs[block_spring_start[k]] to block_springs[block_spring_start[k+1]-1]
+  // (a diagonal block: the springs at i; an off-diagonal one: those on the pair). It depends on
+  // the springs alone, not on the fixed set.
+  std::vector<int> m_pattern_start, m_pattern_column, m_block_spring_start, m_block_springs;
+  // CG only: S by block rows (the same pattern) and the multigrid levels of pcg-multigrid.
   detail::BlockSparseMatrix m_matrix;
-  std::vector<int> m_spring_blocks;
-  std::vector<char> m_first_on_pair;  // spring e is the first on its pair: it writes the blocks
   detail::GridMultigrid m_multigrid;
-  // sparse-direct only: S in a pattern built once, its blocks' slots, the symbolic analysis.
+  // sparse-direct only: S in a pattern built once, where each block k of the row pattern
+  // lives, the symbolic analysis.
   Eigen::SparseMatrix<double> m_s;
-  std::vector<BlockSlot> m_diagonal_slots, m_spring_slots;  // spring e: (i, j) at 2e, (j, i) at 2e+1
+  std::vector<BlockSlot> m_block_slots;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> m_ldlt;
-  Eigen::VectorXd m_b, m_z_v, m_fixed_r_v, m_residual, m_direction, m_preconditioned, m_product;
+  Eigen::VectorXd m_b, m_z_v, m_residual, m_direction, m_preconditioned, m_product;
   // CgStart::projected: the last two such solves' z_v (newest first; empty until solved) and
   // their products by the current S.
   std::array<Eigen::VectorXd, 2> m_history, m_history_products;

@@ -40,16 +40,18 @@ inline detail::BlockSparseMatrix grid_matrix(int rows, int cols, unsigned seed) 
     }
   for (int i = 0; i < n; ++i)
     a.blocks()[static_cast<std::size_t>(a.row_start(i))] += 0.01 * Mat3::Identity();
-  a.invert_diagonal();
-  a.prepare_sweeps();
+  a.finish_rows(true);
   return a;
 }
 
 /// The dense matrix the Gauss-Seidel sweeps of `a` (held densely) see (block_sparse_matrix.hpp):
-/// its symmetric part rounded to float off the diagonal, and on it the inverses of the rounded
-/// symmetric parts of the diagonal blocks' inverses.
+/// off the diagonal its blocks right of the diagonal rounded to float, with their transposes left
+/// of it, and on it the inverses of the rounded symmetric parts of the diagonal blocks' inverses.
 inline Eigen::MatrixXd sweep_matrix(const Eigen::MatrixXd& a) {
-  Eigen::MatrixXd out = (0.5 * (a + a.transpose())).cast<float>().cast<double>();
+  Eigen::MatrixXd upper = a.cast<float>().cast<double>();
+  for (Eigen::Index i = 0; i < a.rows() / 3; ++i)
+    upper.block(3 * i, 0, 3, 3 * i).setZero();  // the blocks left of the diagonal
+  Eigen::MatrixXd out = upper + upper.transpose();
   for (Eigen::Index i = 0; i < a.rows() / 3; ++i) {
     const Mat3 inverse = a.block<3, 3>(3 * i, 3 * i).inverse();
     out.block<3, 3>(3 * i, 3 * i) =
