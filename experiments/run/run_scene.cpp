@@ -52,6 +52,7 @@ nlohmann::json run_summary(const SceneSimulation& run, const EnergyWriter& energ
       {"energy_final", energy.last().total()},
       {"energy_drift_max_abs", energy.drift_max_abs()},
       {"energy_drift_max_rel", energy.drift_max_abs() / std::max(std::abs(e0), 1e-300)},
+      {"energy_rise_max_rel", energy.rise_max_abs() / std::max(std::abs(e0), 1e-300)},
       {"events", events_json(simulation.manipulator(), system.cloth())},
       {"integrator_options", to_json(options)},
       {"scene", run.scene().source},

@@ -37,6 +37,7 @@ void EnergyWriter::on_step(const Simulation& simulation, bool /*event*/) {
 void EnergyWriter::write(const Simulation& simulation) {
   m_last = energy_of(simulation.system(), simulation.state());
   m_drift_max_abs = std::max(m_drift_max_abs, std::abs(m_last.total() - m_initial.total()));
+  m_rise_max_abs = std::max(m_rise_max_abs, m_last.total() - m_initial.total());
   const EnergyBreakdown& e = m_last;
   m_out << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", simulation.time(),
                        e.kinetic, e.spring, e.gravity, e.collision, e.total());

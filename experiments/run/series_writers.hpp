@@ -36,6 +36,10 @@ class EnergyWriter : public SimulationObserver {
   const EnergyBreakdown& last() const { return m_last; }
   /// max |E(t) - E(0)| over the rows written [J].
   double drift_max_abs() const { return m_drift_max_abs; }
+  /// max (E(t) - E(0), 0) over the rows written [J]: what the run gained. Without driven
+  /// particles a cloth's energy can only fall (damping, contact); a step beyond the stability
+  /// limit makes it grow, also where the growth saturates below the runaway bound.
+  double rise_max_abs() const { return m_rise_max_abs; }
 
  private:
   void write(const Simulation& simulation);
@@ -43,7 +47,7 @@ class EnergyWriter : public SimulationObserver {
   std::ofstream m_out;
   OutputClock m_clock;
   EnergyBreakdown m_initial, m_last;
-  double m_drift_max_abs = 0.0;
+  double m_drift_max_abs = 0.0, m_rise_max_abs = 0.0;
 };
 
 /// hands.csv: `t,hand,available,x,y,z,candidate,distance,held` at the output times.

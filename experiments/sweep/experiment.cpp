@@ -92,6 +92,7 @@ BisectSpec read_bisect(JsonReader in) {
   b.steps = in.integer("steps", b.steps);
   if (b.steps < 1 || b.steps > 60) throw in.error("steps", "must be in 1..60");
   if (in.has("max_drift")) b.max_drift = in.positive("max_drift", in.number("max_drift"));
+  if (in.has("max_rise")) b.max_rise = in.positive("max_rise", in.number("max_rise"));
   in.finish();
   return b;
 }
@@ -185,6 +186,7 @@ nlohmann::json RunSpec::to_json() const {
     j["bisect"] = {{"parameter", bisect->parameter}, {"low", bisect->low},
                    {"high", bisect->high}, {"steps", bisect->steps}};
     if (bisect->max_drift) j["bisect"]["max_drift"] = *bisect->max_drift;
+    if (bisect->max_rise) j["bisect"]["max_rise"] = *bisect->max_rise;
   }
   return j;
 }

@@ -20,6 +20,8 @@ struct BisectSpec {
   double high = 0.0;                        ///< expected unstable (checked second)
   int steps = 8;                            ///< probes per search
   std::optional<double> max_drift;          ///< a probe with larger energy drift counts as unstable
+  /// A probe whose energy rose above its start by more than this (relative) counts as unstable.
+  std::optional<double> max_rise;
 };
 
 /// An experiment as read from its file, paths resolved against the file's folder.

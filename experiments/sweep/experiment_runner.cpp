@@ -79,10 +79,12 @@ nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, RunProgressFi
     const RunOutcome o =
         run_scene(scene, dir / "probes" / fmt::format("{:02d}", probes.size()), &progress);
     const double drift = o.summary.value("energy_drift_max_rel", 0.0);
-    const bool stable = o.status == "ok" && (!b.max_drift || drift <= *b.max_drift);
+    const double rise = o.summary.value("energy_rise_max_rel", 0.0);
+    const bool stable = o.status == "ok" && (!b.max_drift || drift <= *b.max_drift) &&
+                        (!b.max_rise || rise <= *b.max_rise);
     wall += o.summary.value("wall_seconds", 0.0);
     probes.push_back({{"value", value}, {"status", o.status}, {"stable", stable},
-                      {"energy_drift_max_rel", drift}});
+                      {"energy_drift_max_rel", drift}, {"energy_rise_max_rel", rise}});
     if (stable) last_stable_summary = o.summary;
     return stable;
   };

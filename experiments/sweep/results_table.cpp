@@ -19,7 +19,7 @@ const std::vector<std::string>& metric_columns() {
       "integrator", "table", "dt", "adaptive", "steps", "rhs_evals", "wall_seconds", "sim_time",
       "duration", "time", "particles", "springs", "object_particles", "energy_initial",
       "energy_final", "energy_drift_max_abs", "energy_drift_max_rel", "energy_drift_final_rel",
-      "events", "hold_count", "release_count", "map_count", "ignored_count", "attach_count",
+      "energy_rise_max_rel", "events", "hold_count", "release_count", "map_count", "ignored_count", "attach_count",
       "attach_error_mean", "attach_error_max", "bisect_parameter", "stable_value",
       "unstable_value", "probes", "version", "git_commit", "build_type", "sundials_version",
       "date", "machine.hostname", "machine.cpu", "machine.cores"};
@@ -58,7 +58,7 @@ nlohmann::json result_row(const RunSpec& run, const nlohmann::json& summary) {
   for (const char* key : {"integrator", "table", "dt", "adaptive", "steps", "rhs_evals",
                           "wall_seconds", "sim_time", "duration", "time", "particles", "springs",
                           "object_particles", "energy_initial", "energy_final",
-                          "energy_drift_max_abs", "energy_drift_max_rel"})
+                          "energy_drift_max_abs", "energy_drift_max_rel", "energy_rise_max_rel"})
     if (summary.contains(key)) row[key] = summary[key];
   const double e0 = summary.value("energy_initial", 0.0);
   const double e1 = summary.value("energy_final", 0.0);
