@@ -111,20 +111,26 @@ TEST(ExperimentRun, CrashedRunsAreRecordedAndRetriedOnResume) {
   EXPECT_EQ(row(1)["steps"], row(0)["steps"]);
 }
 
-TEST(ExperimentRun, BisectionBracketsTheLargestStableStep) {
-  const fs::path dir = temp_dir("bisect");
+// The two-by-three experiment's first case as a bisection of its step (`bisect` the spec),
+// 1 s long so that the largest probe takes its step ten times (a run never shortens a step
+// except to land on the end); returns the output folder.
+fs::path run_bisection(const std::string& name, const char* bisect) {
+  const fs::path dir = temp_dir(name);
   write_scene(dir);
   json source = two_by_three();
   source.erase("sweep");
-  source["bisect"] = json::parse(R"({"parameter": "integrator.dt", "low": 1e-4, "high": 0.1,
-                                     "steps": 6})");
-  // Long enough that the largest probe takes its step ten times (a run never shortens a step
-  // except to land on the end).
+  source["bisect"] = json::parse(bisect);
   source["set"] = json::parse(R"({"duration": 1.0})");
   drape::ExperimentOptions options;
   options.out_dir = dir / "out";
   drape::run_experiment(parse(source, dir), options);
-  const json row = read_json(options.out_dir / "results.json")["runs"][0];
+  return options.out_dir;
+}
+
+TEST(ExperimentRun, BisectionBracketsTheLargestStableStep) {
+  const fs::path out = run_bisection(
+      "bisect", R"({"parameter": "integrator.dt", "low": 1e-4, "high": 0.1, "steps": 6})");
+  const json row = read_json(out / "results.json")["runs"][0];
   ASSERT_EQ(row["status"], "ok") << row.dump();
   const double stable = row["stable_value"].get<double>(), unstable = row["unstable_value"].get<double>();
   EXPECT_LT(stable, unstable);
@@ -136,20 +142,12 @@ TEST(ExperimentRun, BisectionBracketsTheLargestStableStep) {
 }
 
 TEST(ExperimentRun, BisectionWithMaxRiseCountsAProbeThatGainedEnergyAsUnstable) {
-  const fs::path dir = temp_dir("bisect_rise");
-  write_scene(dir);
-  json source = two_by_three();
-  source.erase("sweep");
-  source["bisect"] = json::parse(R"({"parameter": "integrator.dt", "low": 1e-4, "high": 0.1,
-                                     "steps": 6, "max_rise": 1e-8})");
-  source["set"] = json::parse(R"({"duration": 1.0})");
-  drape::ExperimentOptions options;
-  options.out_dir = dir / "out";
-  drape::run_experiment(parse(source, dir), options);
-  const json row = read_json(options.out_dir / "results.json")["runs"][0];
+  const fs::path out = run_bisection("bisect_rise", R"({"parameter": "integrator.dt", "low": 1e-4,
+                                        "high": 0.1, "steps": 6, "max_rise": 1e-8})");
+  const json row = read_json(out / "results.json")["runs"][0];
   ASSERT_EQ(row["status"], "ok") << row.dump();
-  const json probes = read_json(options.out_dir / "runs" / row["id"].get<std::string>() /
-                                "bisect.json")["probes"];
+  const json probes =
+      read_json(out / "runs" / row["id"].get<std::string>() / "bisect.json")["probes"];
   int ok_but_gaining = 0;
   for (const json& p : probes) {
     const bool ok = p["status"] == "ok";
