@@ -37,6 +37,7 @@ void BlockSparseMatrix::set_pattern(const std::vector<std::vector<int>>& neighbo
   const std::size_t n = neighbours.size();
   m_row_start.assign(n + 1, 0);
   m_upper_start.assign(n, 0);
+  m_upper_reach = 0;
   m_column.clear();
   for (std::size_t i = 0; i < n; ++i) {
     m_column.push_back(static_cast<int>(i));
@@ -46,6 +47,7 @@ void BlockSparseMatrix::set_pattern(const std::vector<std::vector<int>>& neighbo
     std::sort(row.begin(), row.end());
     const auto upper = std::upper_bound(row.begin(), row.end(), static_cast<int>(i));
     m_upper_start[i] = static_cast<int>(m_column.size()) + static_cast<int>(upper - row.begin());
+    if (!row.empty()) m_upper_reach = std::max(m_upper_reach, row.back() - static_cast<int>(i));
     m_column.insert(m_column.end(), row.begin(), row.end());
     m_row_start[i + 1] = static_cast<int>(m_column.size());
   }
@@ -120,20 +122,23 @@ void BlockSparseMatrix::forward_sweep_from_zero(const Eigen::VectorXd& b, Eigen:
   x.resize(b.size());
   residual.resize(b.size());
   const Eigen::Matrix3f* blocks = m_sweep_blocks.data();
-  for (int i = 0; i < rows(); ++i) {
-    prefetch_row(*this, blocks, i + rows_ahead);
-    Vec3 sum = particle(b, i);
-    for (int k = row_start(i) + 1; k < m_upper_start[static_cast<std::size_t>(i)]; ++k)
-      sum.noalias() -= blocks[k].cast<double>() * particle(x, column(k));
-    particle(x, i).noalias() = blocks[row_start(i)].cast<double>() * sum;
-  }
-  // Row i of b - A x: its diagonal and left blocks cancel b_i by construction of x_i.
-  for (int i = 0; i < rows(); ++i) {
-    prefetch_row(*this, blocks, i + rows_ahead);
+  // Row r of b - A x needs x up to row r + m_upper_reach: it is formed that many rows behind
+  // the sweep, while row r's blocks are still in cache, instead of in a second pass.
+  for (int i = 0; i < rows() + m_upper_reach; ++i) {
+    if (i < rows()) {
+      prefetch_row(*this, blocks, i + rows_ahead);
+      Vec3 sum = particle(b, i);
+      for (int k = row_start(i) + 1; k < m_upper_start[static_cast<std::size_t>(i)]; ++k)
+        sum.noalias() -= blocks[k].cast<double>() * particle(x, column(k));
+      particle(x, i).noalias() = blocks[row_start(i)].cast<double>() * sum;
+    }
+    const int r = i - m_upper_reach;
+    if (r < 0) continue;
+    // Row r's diagonal and left blocks cancel b_r by construction of x_r.
     Vec3 sum = Vec3::Zero();
-    for (int k = m_upper_start[static_cast<std::size_t>(i)]; k < row_start(i + 1); ++k)
+    for (int k = m_upper_start[static_cast<std::size_t>(r)]; k < row_start(r + 1); ++k)
       sum.noalias() -= blocks[k].cast<double>() * particle(x, column(k));
-    particle(residual, i) = sum;
+    particle(residual, r) = sum;
   }
 }
 

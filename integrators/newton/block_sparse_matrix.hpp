@@ -64,13 +64,15 @@ class BlockSparseMatrix {
   void backward_sweep(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   /// The forward sweep (rows ascending) from x = 0, x = (D + L)^-1 b, and the residual it
   /// leaves, b - A x = -U x, A here the single-precision copy the sweeps read: together one pass
-  /// over the blocks instead of a sweep and a product.
+  /// over the blocks instead of a sweep and a product, each row's residual formed as soon as
+  /// the x it reads is final.
   void forward_sweep_from_zero(const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                Eigen::VectorXd& residual) const;
 
  private:
   std::vector<int> m_row_start{0}, m_column;  // row_start of an empty matrix: rows() = 0
   std::vector<int> m_upper_start;  // row i's first block right of the diagonal
+  int m_upper_reach = 0;           // the largest column - row of a block right of the diagonal
   std::vector<int> m_transpose;    // index of block (j, i) for block (i, j), -1 if none
   bool m_symmetric_pattern = true;
   std::vector<Mat3> m_blocks, m_diagonal_inverse;
