@@ -19,7 +19,8 @@ const std::vector<std::string>& metric_columns() {
       "integrator", "table", "dt", "adaptive", "steps", "rhs_evals", "wall_seconds", "sim_time",
       "duration", "time", "particles", "springs", "object_particles", "energy_initial",
       "energy_final", "energy_drift_max_abs", "energy_drift_max_rel", "energy_drift_final_rel",
-      "energy_rise_max_rel", "events", "hold_count", "release_count", "map_count", "ignored_count", "attach_count",
+      "energy_rise_max_rel", "events", "hold_count", "release_count", "map_count",
+      "ignored_count", "attach_count",
       "attach_error_mean", "attach_error_max", "bisect_parameter", "stable_value",
       "unstable_value", "probes", "version", "git_commit", "build_type", "sundials_version",
       "date", "machine.hostname", "machine.cpu", "machine.cores"};

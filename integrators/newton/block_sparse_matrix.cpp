@@ -10,10 +10,10 @@ namespace {
 
 // The Gauss-Seidel sweeps request the blocks of the row `rows_ahead` rows on. Their rows wait on
 // the row before (its x), so the processor cannot run ahead to the next rows' loads as in the
-// product, and the forward sweep's two passes read a part of each row (L, then U), a pattern
-// the hardware's stream prefetcher does not follow. Once the blocks outgrew the cache (10.6 MB
-// of double blocks at 128 x 128) each row then waited on memory: a multigrid cycle cost 4 to 5
-// times as much a row at 128 x 128 as at 64 x 64, and 1.5 to 2 times with these requests
+// product, and the forward sweep reads each row in two parts (L, then U a few rows later), a
+// pattern the hardware's stream prefetcher does not follow. Once the blocks outgrew the cache
+// (10.6 MB of double blocks at 128 x 128) each row then waited on memory: a multigrid cycle cost
+// 4 to 5 times as much a row at 128 x 128 as at 64 x 64, and 1.5 to 2 times with these requests
 // (docs/performance.md, "Prefetching the sweeps"; since "Single-precision sweeps" the sweeps
 // read 5.3 MB there and a cycle costs the same a row at both sizes). Eight rows are about 3 KB
 // of float blocks in flight; 2 to 24 rows measured alike with double blocks.

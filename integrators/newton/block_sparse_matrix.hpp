@@ -11,10 +11,11 @@
 // sweeps only precondition: CG's product and residuals stay in double, so the solution's accuracy
 // is CG's tolerance, not float's. The copy takes each pair of off-diagonal blocks from the one
 // right of the diagonal (its transpose left of it) and the symmetric part of D_i^-1, so that the
-// cycle is exactly symmetric (CG needs a symmetric preconditioner) even where the double blocks
-// are transposes only to round-off. For the symmetric matrices it serves (S, whose couplings
-// -C_e are symmetric, and the Galerkin coarse operators, whose blocks left of the diagonal are
-// written as transposes) that is A rounded to float.
+// cycle is exactly symmetric (CG needs a symmetric preconditioner) where the double blocks are
+// transposes only to round-off: S's couplings -C_e are symmetric up to the rounding of their
+// products, and the Galerkin diagonal blocks sum their terms in another order than their
+// transposes would (the coarse blocks left of the diagonal are written as exact transposes).
+// Within that round-off the copy is A rounded to float.
 //
 // A row is finished (its diagonal inverted, its share of the copy written) by finish_row() as
 // soon as its diagonal and right blocks hold their values, so that an assembly writing row by
@@ -65,7 +66,8 @@ class BlockSparseMatrix {
   /// The forward sweep (rows ascending) from x = 0, x = (D + L)^-1 b, and the residual it
   /// leaves, b - A x = -U x, A here the single-precision copy the sweeps read: together one pass
   /// over the blocks instead of a sweep and a product, each row's residual formed as soon as
-  /// the x it reads is final.
+  /// the x it reads is final. `residual` must not alias `b` or `x` (it is written while later
+  /// rows of b are still read).
   void forward_sweep_from_zero(const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                Eigen::VectorXd& residual) const;
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <stdexcept>
 
 namespace drape {
 
@@ -58,8 +59,7 @@ void ReducedNewtonSolver::for_each_block(Visit visit, FinishRow finish_row) cons
   const double mass = m_system.particle_mass();
   const double g = m_gamma, g2 = m_gamma * m_gamma;
   // K's pair pattern [-J J; J -J] puts +C_e on both diagonal blocks of S and -C_e on (i, j) and
-  // (j, i). The blocks (i, j) and (j, i) sum the same springs in the same order, so S is as
-  // symmetric as each C_e.
+  // (j, i). The blocks (i, j) and (j, i) sum the same springs in the same order: the same bits.
   const auto coupling = [&](int k) {
     Mat3 sum = Mat3::Zero();
     for (int t = m_block_spring_start[static_cast<std::size_t>(k)];
@@ -76,16 +76,14 @@ void ReducedNewtonSolver::for_each_block(Visit visit, FinishRow finish_row) cons
     if (fixed[row]) {
       // A fixed particle's row and column are dropped: its diagonal stays M and it couples to
       // nobody.
-      visit(start, i, i, Mat3(mass * Mat3::Identity()));
-      for (int k = start + 1; k < end; ++k)
-        visit(k, i, m_pattern_column[static_cast<std::size_t>(k)], Mat3(Mat3::Zero()));
+      visit(start, Mat3(mass * Mat3::Identity()));
+      for (int k = start + 1; k < end; ++k) visit(k, Mat3(Mat3::Zero()));
     } else {
-      visit(start, i, i,
-            Mat3(mass * Mat3::Identity() - g * m_jacobian.particle_v[row] -
-                 g2 * m_jacobian.particle_x[row] + coupling(start)));
+      visit(start, Mat3(mass * Mat3::Identity() - g * m_jacobian.particle_v[row] -
+                        g2 * m_jacobian.particle_x[row] + coupling(start)));
       for (int k = start + 1; k < end; ++k) {
-        const int j = m_pattern_column[static_cast<std::size_t>(k)];
-        visit(k, i, j, fixed[static_cast<std::size_t>(j)] ? Mat3(Mat3::Zero()) : Mat3(-coupling(k)));
+        const auto j = static_cast<std::size_t>(m_pattern_column[static_cast<std::size_t>(k)]);
+        visit(k, fixed[j] ? Mat3(Mat3::Zero()) : Mat3(-coupling(k)));
       }
     }
     finish_row(i);
@@ -146,7 +144,12 @@ void ReducedNewtonSolver::form_system() {
 }
 
 void ReducedNewtonSolver::build_block_rows() {
-  m_matrix.set_pattern(build_gather());  // the same row pattern: diagonal first, then ascending
+  // The block rows keep the gather's order (the diagonal first, then the columns ascending):
+  // for_each_block's k indexes both.
+  m_matrix.set_pattern(build_gather());
+  for (int k = 0; k < static_cast<int>(m_pattern_column.size()); ++k)
+    if (m_matrix.column(k) != m_pattern_column[static_cast<std::size_t>(k)])
+      throw std::logic_error("ReducedNewtonSolver: the block rows and the gather differ");
   if (m_method == ReducedSolve::multigrid_cg) {
     const ClothParams& grid = m_system.cloth().params;
     m_multigrid.build(m_matrix, grid.rows, grid.cols);
@@ -159,8 +162,9 @@ void ReducedNewtonSolver::assemble_block_rows() {
   // symmetric positive definite (a principal block of S).
   std::vector<Mat3>& blocks = m_matrix.blocks();
   const bool sweeps = m_method == ReducedSolve::multigrid_cg;
-  for_each_block([&](int k, int, int, const Mat3& block) { blocks[static_cast<std::size_t>(k)] = block; },
-                 [&](int i) { m_matrix.finish_row(i, sweeps); });
+  for_each_block(
+      [&](int k, const Mat3& block) { blocks[static_cast<std::size_t>(k)] = block; },
+      [&](int i) { m_matrix.finish_row(i, sweeps); });
 }
 
 void ReducedNewtonSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out) {
@@ -222,10 +226,11 @@ void ReducedNewtonSolver::assemble_matrix() {
   // Every entry of the pattern is a block of the row pattern: written once, nothing zeroed.
   double* values = m_s.valuePtr();
   for_each_block(
-      [&](int k, int, int, const Mat3& block) {
+      [&](int k, const Mat3& block) {
         const BlockSlot& slot = m_block_slots[static_cast<std::size_t>(k)];
         for (Eigen::Index b = 0; b < 3; ++b)
-          for (Eigen::Index a = 0; a < 3; ++a) values[slot.base + b * slot.stride + a] = block(a, b);
+          for (Eigen::Index a = 0; a < 3; ++a)
+            values[slot.base + b * slot.stride + a] = block(a, b);
       },
       [](int) {});
 }
@@ -233,7 +238,7 @@ void ReducedNewtonSolver::assemble_matrix() {
 void ReducedNewtonSolver::jacobian_times(ConstVecRef r_x, ConstVecRef r_v,
                                          Eigen::VectorXd& out) const {
   // D's columns enter only at fixed particles (D r_v|fixed): D's blocks are read there alone,
-  // about a third of the blocks this pass would otherwise stream.
+  // half of the spring blocks this pass would otherwise stream.
   const SpringSet& springs = m_system.cloth().springs;
   const auto& fixed = m_system.constraints().mask();
   out.resize(r_x.size());

@@ -82,9 +82,9 @@ class ReducedNewtonSolver {
     Eigen::Index base = 0, stride = 0;
   };
 
-  /// S's blocks from the last K, D and gamma, row by row: visit(k, i, j, S_ij) for each block
-  /// of row i in the pattern's order (the diagonal first, then the columns ascending; k counts
-  /// the blocks), then finish_row(i). S_ii = M - gamma D_ii - gamma^2 K_ii + sum of C_e over the
+  /// S's blocks from the last K, D and gamma, row by row: visit(k, S_ij) for each block of row
+  /// i in the pattern's order (the diagonal first, then the columns ascending; k counts the
+  /// blocks), then finish_row(i). S_ii = M - gamma D_ii - gamma^2 K_ii + sum of C_e over the
   /// springs at i, or M on a fixed particle; S_ij = -sum of C_e over the springs on (i, j) when
   /// both ends are free, 0 otherwise (C_e = gamma D_e + gamma^2 K_e). Each block is written
   /// once, gathered from the spring blocks it sums, so S streams out in memory order

@@ -27,7 +27,8 @@ std::unique_ptr<ClothSystem> resting_cloth() {
   ForceParams forces;
   forces.gravity = Vec3::Zero();
   auto s = std::make_unique<ClothSystem>(build_cloth(p), nullptr, forces);
-  for (int c = 0; c < p.cols; ++c) s->constraints().fix_at(c, s->cloth().rest_positions.segment<3>(3 * c));
+  for (int c = 0; c < p.cols; ++c)
+    s->constraints().fix_at(c, s->cloth().rest_positions.segment<3>(3 * c));
   return s;
 }
 

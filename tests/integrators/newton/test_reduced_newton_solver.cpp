@@ -242,8 +242,8 @@ TEST(ReducedNewtonSolver, ProjectedStartIsTheGalerkinProjectionWithTheCurrentS) 
   EXPECT_LE(error(galerkin), error(history.col(0)));
 }
 
-// The one-pass assembly (the first spring on a pair writes its blocks, any other adds, nothing
-// zeroed first) with two springs on one pair in either orientation, assembled twice with a
+// The row-wise assembly (each block gathers the springs on it) with two springs on one pair in
+// either orientation, assembled twice with a
 // particle fixed in between, against the dense matrix of the same Jacobians. The force kernel
 // works on the grid's stencils, so only the Jacobians (which walk the spring list) see the
 // added springs: enough for the linear solve.
