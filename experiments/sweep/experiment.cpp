@@ -15,6 +15,7 @@
 #include "core/scene/json_reader.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
+#include "experiments/sweep/plan_size.hpp"
 #include "core/scene/json_text.hpp"
 
 namespace drape {
@@ -288,6 +289,7 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
   }
   in.finish();
   check_disjoint(in, e);
+  check_plan_size(e);
   return e;
 }
 
