@@ -5,6 +5,7 @@
 
 #include "core/scene/json_reader.hpp"
 #include "core/scene/json_text.hpp"
+#include "core/scene/scene_limits.hpp"
 #include "core/input/kinect_readers.hpp"
 
 namespace drape {
@@ -15,7 +16,7 @@ constexpr int native_version = 1;
 
 std::optional<HandSample> read_hand(JsonReader& reader, const std::string& key) {
   if (!reader.has(key) || reader.raw(key).is_null()) return std::nullopt;
-  return HandSample{reader.vec3(key), false};
+  return HandSample{reader.within(key, reader.vec3(key), limits::max_sensor_coordinate), false};
 }
 
 // The one frame parser of the native format, shared by the JSON Lines reader and the inline
@@ -24,7 +25,7 @@ HandFrame read_frame(const nlohmann::json& object, const std::string& file,
                      const std::string& path) {
   JsonReader reader(object, file, path);
   HandFrame frame;
-  frame.t = reader.number("t");
+  frame.t = reader.within("t", reader.number("t"), limits::max_recording_time);
   frame.left = read_hand(reader, "left");
   frame.right = read_hand(reader, "right");
   if (reader.has("keys")) {
