@@ -159,7 +159,8 @@ ManipulationParams read_manipulation(JsonReader in, const ClothParams& cloth) {
 
 Perturbation read_perturbation(JsonReader in) {
   Perturbation p;
-  p.position = in.non_negative("position", in.number("position", 0.0));
+  p.position = in.at_most("position", in.non_negative("position", in.number("position", 0.0)),
+                          limits::max_perturbation);
   const int seed = in.integer("seed", 0);
   if (seed < 0) throw in.error("seed", "must not be negative");
   p.seed = static_cast<std::uint64_t>(seed);

@@ -32,6 +32,10 @@ constexpr double max_mass = 1e6;
 constexpr double max_gravity = 1e3;
 /// Simulated time [s].
 constexpr double max_duration = 1e6;
+/// perturbation.position, a fraction of cloth.spacing: past half a spacing two uniformly
+/// perturbed neighbours can pass each other, so the run would start from a tangled cloth, not
+/// from a perturbed one (an ensemble's default is 1e-3).
+constexpr double max_perturbation = 0.5;
 /// Horizons of restart_error: each one reruns the scene's method after every event.
 constexpr std::size_t max_restart_horizons = 16;
 /// Rows of an output file implied by an interval: rows per frame x frames (trace.csv, frames/),

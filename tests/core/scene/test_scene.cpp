@@ -125,6 +125,12 @@ TEST(SceneLimits, ValuesWhoseProductsOverflowAreRefused) {
             "scene.json: gravity: must be within +-1000.0");
   EXPECT_EQ(error_for(with("duration=1e300")),
             "scene.json: duration: must be at most 1000000.0, got 1e+300");
+  // A fraction of the spacing: 1e6 of it started a run at 10^6 m/s, 1e300 diverged at once.
+  EXPECT_EQ(error_for(with("perturbation.position=1e6")),
+            "scene.json: perturbation.position: must be at most 0.5, got 1000000.0");
+  EXPECT_EQ(error_for(with("perturbation.position=1e300")),
+            "scene.json: perturbation.position: must be at most 0.5, got 1e+300");
+  EXPECT_EQ(error_for(with("perturbation.position=0.5")), "no error");
 }
 
 TEST(SceneLimits, OutputIntervalsMustAdvanceTimeAndBoundTheFiles) {
