@@ -192,6 +192,11 @@ TEST(ExperimentFile, ErrorsNameTheField) {
   json bad_bisect = two_by_three();
   bad_bisect["bisect"] = json::parse(R"({"low": 0.01, "high": 0.001})");
   EXPECT_EQ(error_field(bad_bisect, dir), "bisect.high");
+  json other_grid = two_by_three();
+  other_grid["reference"] = json::parse(R"({"integrator.dt": 0.0001, "cloth.rows": 5})");
+  EXPECT_EQ(error_field(other_grid, dir), "reference.cloth.rows");
+  other_grid["reference"] = json::parse(R"({"cloth": {"rows": 5}})");
+  EXPECT_EQ(error_field(other_grid, dir), "reference.cloth");
 }
 
 TEST(ExperimentFile, APlanBeyondTheLimitIsRefusedFromItsCounts) {
