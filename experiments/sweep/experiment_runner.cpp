@@ -15,6 +15,7 @@
 #include "core/scene/json_reader.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/sweep/child_runs.hpp"
+#include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/sweep/progress_reporter.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "experiments/sweep/results_table.hpp"
@@ -235,6 +236,7 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
     for (const RunSpec* run : slice) to_check.push_back(*run);
     validate_runs(to_check);
   }
+  if (options.overwrite) clear_experiment_folder(options.out_dir);
 
   fs::create_directories(options.out_dir / "runs");
   const nlohmann::json header = experiment_header(experiment, plan);
