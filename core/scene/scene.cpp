@@ -251,6 +251,17 @@ void apply_override(nlohmann::json& scene, const std::string& assignment) {
   *node = std::move(value);
 }
 
+std::optional<std::size_t> override_holding(const std::vector<std::string>& overrides,
+                                            const std::string& field) {
+  for (std::size_t k = overrides.size(); k-- > 0;) {
+    const std::string path = overrides[k].substr(0, overrides[k].find('='));
+    if (field.rfind(path, 0) != 0) continue;
+    if (field.size() == path.size() || field[path.size()] == '.' || field[path.size()] == '[')
+      return k;
+  }
+  return std::nullopt;
+}
+
 Scene parse_scene(const nlohmann::json& source, const std::string& file,
                   const std::filesystem::path& base_dir) {
   JsonReader in(source, file, "");

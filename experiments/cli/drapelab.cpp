@@ -21,11 +21,24 @@
 
 namespace {
 
+// The scene with the --set overrides, and the run's outcome; an error in a value a --set gave
+// names that argument, not the scene file it was applied to.
+drape::RunOutcome run_with_overrides(const std::string& scene_file, const std::string& out_dir,
+                                     const std::vector<std::string>& overrides) {
+  try {
+    return drape::run_scene(drape::load_scene(scene_file, overrides), out_dir);
+  } catch (const drape::InputError& e) {
+    const auto k = e.file() == scene_file ? drape::override_holding(overrides, e.field())
+                                          : std::nullopt;
+    if (!k) throw;
+    throw drape::InputError("--set " + drape::shorten(overrides[*k]), e.field(), e.message());
+  }
+}
+
 int run_command(const std::string& scene_file, const std::string& out_dir,
                 const std::vector<std::string>& overrides, bool quiet, bool overwrite) {
   drape::check_run_folder(out_dir, overwrite);  // before anything is read or built
-  const drape::Scene scene = drape::load_scene(scene_file, overrides);
-  const drape::RunOutcome outcome = drape::run_scene(scene, out_dir);
+  const drape::RunOutcome outcome = run_with_overrides(scene_file, out_dir, overrides);
   if (outcome.status != "ok")
     std::cerr << fmt::format("drapelab: {}: {} at t = {:.6g} s: {}\n", scene_file, outcome.status,
                              outcome.summary.value("time", 0.0), outcome.reason);

@@ -159,6 +159,17 @@ TEST(SceneLimits, HugeOverrideValuesAreShortenedInTheMessage) {
   EXPECT_LT(message.size(), 300u);
 }
 
+TEST(Scene, AnErrorInsideAnOverriddenValueFindsItsOverride) {
+  const std::vector<std::string> overrides = {"cloth.k_structural=5", "pins=[[0, 0, 1]]",
+                                              "cloth.k=1", "cloth.k_structural=6"};
+  EXPECT_EQ(override_holding(overrides, "cloth.k_structural"), 3u);  // the last one wins
+  EXPECT_EQ(override_holding(overrides, "pins[0]"), 1u);
+  EXPECT_EQ(override_holding(overrides, "cloth.k"), 2u);
+  EXPECT_FALSE(override_holding(overrides, "cloth.k_shear").has_value());
+  EXPECT_FALSE(override_holding(overrides, "cloth").has_value());
+  EXPECT_FALSE(override_holding({}, "duration").has_value());
+}
+
 TEST(Scene, DirectionsMustBeOrthogonalUnitVectors) {
   EXPECT_EQ(error_for(with("cloth.col_dir=[2, 0, 0]")),
             "scene.json: cloth.col_dir: must be a unit vector, has length 2.000000");
