@@ -14,6 +14,7 @@
 #include "experiments/cli/integrators_command.hpp"
 #include "experiments/cli/run_stats.hpp"
 #include "experiments/run/provenance.hpp"
+#include "experiments/run/run_files.hpp"
 #include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "experiments/viewer/view_command.hpp"
@@ -131,6 +132,10 @@ int main(int argc, char** argv) {
   } catch (const drape::InputError& e) {
     std::cerr << "drapelab: error: " << e.what() << "\n";
     return drape::exit_input;
+  } catch (const drape::OutputError& e) {
+    // The first failed write stops the run: its folder has no summary.json (docs/outputs.md).
+    std::cerr << "drapelab: error: " << e.what() << "\n";
+    return drape::exit_output;
   } catch (const std::exception& e) {
     std::cerr << "drapelab: failed: " << e.what() << "\n";
     return drape::exit_failure;

@@ -320,6 +320,29 @@ TEST(DrapelabHarden, AnErrorInASetValueNamesTheArgumentNotTheScene) {
       << r.err;
 }
 
+TEST(DrapelabHarden, AFailedWriteStopsTheRunWithExitFour) {
+  // A file size limit stands in for a full disk: past it every write fails (EFBIG), once the
+  // signal it sends is ignored, as a full disk sends none. Before, the run went on writing
+  // nothing and ended with exit 1 at summary.json.
+  const fs::path out = fresh_dir("run_full");
+  nlohmann::json scene = hanging_cloth();
+  scene["output"]["energy_interval"] = 0;  // a row every step: 2000 rows, about 200 kB
+  scene["duration"] = 2.0;
+  const fs::path err = fs::path(::testing::TempDir()) / "run_full_stderr.txt";
+  const std::string cmd = "sh -c 'trap \"\" XFSZ; ulimit -f 64; exec " + std::string(DRAPELAB_EXE) +
+                          " run " + write_scene("full.json", scene).string() + " --out " +
+                          out.string() + "' 2> " + err.string() + " > /dev/null";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 4);
+  const std::string message = read_text(err);
+  EXPECT_NE(message.find("drapelab: error: cannot write " + (out / "energy.csv").string() +
+                         ": File too large"),
+            std::string::npos)
+      << message;
+  EXPECT_FALSE(fs::exists(out / "summary.json")) << "the folder must not look complete";
+}
+
 TEST(Readme, TestCommandIsWhatCiRuns) {
   const std::string readme = read_text(fs::path(DRAPE_SOURCE_DIR) / "README.md");
   const std::string ci = read_text(fs::path(DRAPE_SOURCE_DIR) / ".ci" / "run");
