@@ -163,6 +163,17 @@ def run_dir(directory, row):
     return Path(directory) / row["run_dir"]
 
 
+def missing_run_files(directory, row):
+    """The files a run of the results table must have and has not: result.json, then
+    summary.json and energy.csv (a bisection: bisect.json); none for a run that could not run
+    or crashed, which has no files to report on."""
+    if row.get("status") in ("error", "crashed"):
+        return []
+    run = run_dir(directory, row)
+    names = ("bisect.json",) if row.get("bisect_parameter") else ("summary.json", "energy.csv")
+    return [run / name for name in ("result.json",) + names if not (run / name).is_file()]
+
+
 def scene_value(summary, path, default):
     """A value of the scene as run (summary.json `scene`), or the documented default."""
     node = summary.get("scene", {})

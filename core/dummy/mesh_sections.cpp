@@ -16,6 +16,7 @@
 #include <unordered_map>
 
 #include "core/scene/input_error.hpp"
+#include "core/scene/json_reader.hpp"
 
 namespace drape {
 
@@ -108,7 +109,8 @@ void check_vertex_lines(const std::string& file) {
 }  // namespace
 
 TriangleMesh read_obj_mesh(const std::string& file, double unit) {
-  if (!std::filesystem::is_regular_file(file)) throw InputError(file, "", "cannot open the file");
+  // A directory or a device (/dev/zero) is said to be one (docs/scene.md, Limits).
+  if (const auto reason = unreadable_file_reason(file)) throw InputError(file, "", *reason);
   check_vertex_lines(file);
   tinyobj::ObjReaderConfig config;
   // Polygons are fanned from their first corner below rather than split along their shorter

@@ -1,6 +1,8 @@
 #include "core/input/hand_track.hpp"
 
 #include <Eigen/LU>
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -75,6 +77,26 @@ void check_rotation(const Mat3& r, const std::string& file, const std::string& f
     throw InputError(file, field,
                      "not a rotation: determinant " + std::to_string(r.determinant()) +
                          " (a reflection would make the scene frame left-handed)");
+}
+
+void check_hand_position(const Vec3& position, const std::string& file, const std::string& field) {
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(position[k]) <= max_hand_coordinate))  // NaN fails too
+      throw InputError(file, field + "." + "xyz"[k],
+                       fmt::format("{} is not a scene coordinate within +-{} m", position[k],
+                                   max_hand_coordinate));
+}
+
+void check_hand_positions(const std::vector<HandFrame>& frames, const SensorTransform& transform,
+                          const std::string& file,
+                          const std::function<std::string(std::size_t)>& frame_field) {
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (frames[i].left)
+      check_hand_position(transform.point(frames[i].left->position), file, frame_field(i) + ".left");
+    if (frames[i].right)
+      check_hand_position(transform.point(frames[i].right->position), file,
+                          frame_field(i) + ".right");
+  }
 }
 
 HandTrack::HandTrack(const std::vector<HandFrame>& frames, const SensorTransform& transform,

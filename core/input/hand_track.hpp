@@ -3,6 +3,7 @@
 // filtered by an explicit tracking policy, optionally smoothed, and interpolated so that a
 // particle held by a hand gets p(t), p'(t) and p''(t) (docs/model.md section 5) at any step size.
 // docs/input.md explains each policy and why it was chosen.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,19 @@ struct SensorTransform {
 /// Throws an InputError naming `field` unless `r` is a proper rotation (R^T R = I, det R = +1,
 /// each to 1e-6): a reflection would turn the right-handed sensor frame into a left-handed one.
 void check_rotation(const Mat3& r, const std::string& file, const std::string& field);
+
+/// The farthest a hand may be from the scene's origin in any coordinate [m], recorded or live:
+/// no dress form scene is larger than a room, and a stray sensor value must not hold cloth.
+constexpr double max_hand_coordinate = 10.0;
+
+/// Throws an InputError naming `field`.x (.y, .z) unless every coordinate of `position` (scene
+/// frame) is within +-max_hand_coordinate; NaN fails too.
+void check_hand_position(const Vec3& position, const std::string& file, const std::string& field);
+/// check_hand_position for every hand sample of `frames` (sensor frame) as `transform` maps it;
+/// the field of frame i is `frame_field(i)` + ".left" or ".right".
+void check_hand_positions(const std::vector<HandFrame>& frames, const SensorTransform& transform,
+                          const std::string& file,
+                          const std::function<std::string(std::size_t)>& frame_field);
 
 /// Recording time to scene time: `t_scene = offset + scale * t_recording`.
 struct TimeMap {

@@ -106,8 +106,18 @@ InputConfig parse_input_config(const nlohmann::json& input, const std::string& s
         "translation", transform.vec3("translation", Vec3::Zero()), limits::max_coordinate);
     transform.finish();
   }
-  config.time.offset = reader.number("time_offset", 0.0);
+  if (config.recording.empty()) {
+    const std::string events = reader.field("events");
+    check_hand_positions(config.events, config.transform, scene_file,
+                         [&](std::size_t i) { return events + "[" + std::to_string(i) + "]"; });
+  }
+  config.time.offset = reader.within("time_offset", reader.number("time_offset", 0.0),
+                                     limits::max_recording_time);
   config.time.scale = reader.positive("time_scale", reader.number("time_scale", 1.0));
+  if (!(config.time.scale >= 1.0 / limits::max_time_scale))
+    throw reader.error("time_scale", "must be at least " +
+                                         nlohmann::json(1.0 / limits::max_time_scale).dump());
+  reader.at_most("time_scale", config.time.scale, limits::max_time_scale);
   config.track.inferred = read_choice(reader, "inferred", InferredPolicy::Use, inferred_choices);
   config.track.max_gap = reader.non_negative("max_gap", reader.number("max_gap", 0.15));
   if (reader.has("smoothing")) {
@@ -158,6 +168,10 @@ HandInput load_hand_input(const InputConfig& config) {
   input.config = config;
   if (!config.recording.empty()) {
     const Recording recording = read_recording(config.recording, config.format);
+    check_hand_positions(recording.frames, config.transform, config.recording, [&](std::size_t i) {
+      return "frame " + std::to_string(i + 1) + " (t = " +
+             nlohmann::json(recording.frames[i].t).dump() + " s)";
+    });
     input.source = recording.source;
     input.track = HandTrack(recording.frames, config.transform, config.time, config.track);
     input.track.add_keys(config.events, config.time);

@@ -1,6 +1,9 @@
 #include "core/input/kinect_readers.hpp"
 
+#include <cmath>
 #include <optional>
+
+#include "core/scene/scene_limits.hpp"
 
 namespace drape {
 
@@ -32,6 +35,10 @@ Joint parse_joint(std::string_view x, std::string_view y, std::string_view z,
                  detail::parse_finite(y, lines, name + ".Y"),
                  detail::parse_finite(z, lines, name + ".Z")),
             TrackingState::NotTracked};
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(out.position[k]) <= limits::max_sensor_coordinate))
+      throw lines.error(name + "." + "XYZ"[k],
+                        "must be within +-" + nlohmann::json(limits::max_sensor_coordinate).dump());
   const long long s = detail::parse_integer(state, lines, name + ".TrackingState");
   if (s < 0 || s > 2)
     throw lines.error(name + ".TrackingState",

@@ -1,10 +1,12 @@
 #include "core/input/recording.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
 #include "core/scene/json_reader.hpp"
 #include "core/scene/json_text.hpp"
+#include "core/scene/scene_limits.hpp"
 #include "core/input/kinect_readers.hpp"
 
 namespace drape {
@@ -15,7 +17,7 @@ constexpr int native_version = 1;
 
 std::optional<HandSample> read_hand(JsonReader& reader, const std::string& key) {
   if (!reader.has(key) || reader.raw(key).is_null()) return std::nullopt;
-  return HandSample{reader.vec3(key), false};
+  return HandSample{reader.within(key, reader.vec3(key), limits::max_sensor_coordinate), false};
 }
 
 // The one frame parser of the native format, shared by the JSON Lines reader and the inline
@@ -24,15 +26,18 @@ HandFrame read_frame(const nlohmann::json& object, const std::string& file,
                      const std::string& path) {
   JsonReader reader(object, file, path);
   HandFrame frame;
-  frame.t = reader.number("t");
+  frame.t = reader.within("t", reader.number("t"), limits::max_recording_time);
   frame.left = read_hand(reader, "left");
   frame.right = read_hand(reader, "right");
   if (reader.has("keys")) {
     const auto& keys = reader.raw("keys");
     if (!keys.is_array()) throw reader.error("keys", "expected an array of key names");
+    const auto& known = manipulation_keys();
     for (const auto& key : keys) {
-      if (!key.is_string() || key.get<std::string>().empty())
-        throw reader.error("keys", "expected non-empty strings, got " + quote_json(key));
+      if (!key.is_string() ||
+          std::find(known.begin(), known.end(), key.get<std::string>()) == known.end())
+        throw reader.error("keys", "expected \"r\" (release), \"a\" (attach) or \"m\" (map), got " +
+                                       quote_json(key));
       frame.keys.push_back(key.get<std::string>());
     }
   }
@@ -58,6 +63,11 @@ nlohmann::ordered_json hand_to_json(const std::optional<HandSample>& hand) {
 }
 
 }  // namespace
+
+const std::vector<std::string>& manipulation_keys() {
+  static const std::vector<std::string> keys = {"r", "a", "m"};
+  return keys;
+}
 
 RecordingFormat detect_recording_format(const std::string& file) {
   // The content decides, not the extension: the three formats differ on their first line
@@ -94,6 +104,9 @@ Recording read_drapelab_recording(const std::string& file) {
     recording.frames.push_back(std::move(frame));
   }
   if (!header) throw InputError(file, "", "empty file: expected the drapelab-recording header");
+  // A replay with no frames would run without hands as if nothing were wrong (as the Kinect
+  // readers refuse an empty file).
+  if (recording.frames.empty()) throw InputError(file, "", "no frames after the header");
   return recording;
 }
 

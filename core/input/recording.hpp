@@ -45,6 +45,10 @@ struct Recording {
   std::vector<HandFrame> frames;
 };
 
+/// The keys a frame may press, each bound to a manipulation (docs/manipulations.md): r release,
+/// a attach, m map. Any other is an error where frames are read: it would do nothing, silently.
+const std::vector<std::string>& manipulation_keys();
+
 /// The file formats a recording can be read from.
 enum class RecordingFormat { Auto, Drapelab, KinectV2Csv, NtuSkeleton };
 

@@ -17,10 +17,13 @@ class InputError : public std::runtime_error {
   InputError(std::string file, std::string field, const std::string& message)
       : std::runtime_error(format(file, field, message)),
         m_file(std::move(file)),
-        m_field(shorten(field)) {}
+        m_field(shorten(field)),
+        m_message(shorten(message, 1000)) {}
 
   const std::string& file() const { return m_file; }
   const std::string& field() const { return m_field; }
+  /// What is wrong, without the file and the field (to name another origin of the value).
+  const std::string& message() const { return m_message; }
 
  private:
   static std::string format(const std::string& file, const std::string& field,
@@ -31,6 +34,7 @@ class InputError : public std::runtime_error {
   }
   std::string m_file;
   std::string m_field;
+  std::string m_message;
 };
 
 }  // namespace drape

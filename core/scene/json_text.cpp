@@ -1,34 +1,88 @@
 #include "core/scene/json_text.hpp"
 
+#include <set>
+#include <stdexcept>
+#include <vector>
+
 namespace drape {
 
 namespace {
 
-// Tracks the depth through nlohmann's parser callback; the callback sees every opening and
-// closing bracket before the parser recurses further, so throwing there stops it in time.
-nlohmann::json::parser_callback_t depth_guard(int& depth) {
-  using event = nlohmann::json::parse_event_t;
-  return [&depth](int, event e, nlohmann::json&) {
+// Input nlohmann would accept but a reader must not: `path` is where in the value it was found.
+struct RefusedJson : std::runtime_error {
+  RefusedJson(std::string where, const std::string& message)
+      : std::runtime_error(message), path(std::move(where)) {}
+  std::string path;
+};
+
+// Checks the text while nlohmann parses it, through the parser callback, which sees every
+// bracket before the parser recurses further (so throwing there stops it in time) and every
+// key: the nesting depth, and keys repeated in one object, of which nlohmann would silently keep
+// the last value (a scene with "dt" twice would run with whichever came last).
+class ParseGuard {
+ public:
+  bool operator()(int, nlohmann::json::parse_event_t e, const nlohmann::json& parsed) {
+    using event = nlohmann::json::parse_event_t;
     if (e == event::object_start || e == event::array_start) {
-      if (++depth > max_json_depth)
-        throw std::length_error("nested deeper than " + std::to_string(max_json_depth) +
-                                " levels");
+      if (m_open.size() >= static_cast<std::size_t>(max_json_depth))
+        throw RefusedJson("", "nested deeper than " + std::to_string(max_json_depth) + " levels");
+      m_open.push_back({e == event::object_start, child_label(), {}, "", 0});
+    } else if (e == event::key) {
+      Level& level = m_open.back();
+      level.key = parsed.get<std::string>();
+      if (!level.keys.insert(level.key).second)
+        throw RefusedJson(path(), "the key is repeated in its object (only one value can be kept)");
     } else if (e == event::object_end || e == event::array_end) {
-      --depth;
+      m_open.pop_back();
+      count_item();
+    } else if (e == event::value) {
+      count_item();
     }
     return true;
+  }
+
+ private:
+  struct Level {
+    bool object;
+    std::string label;  // ".key" or "[index]" in its parent, "" at the root
+    std::set<std::string> keys;
+    std::string key;  // the key whose value is being read
+    std::size_t items;  // the values an array has read
   };
+
+  std::string child_label() const {
+    if (m_open.empty()) return "";
+    const Level& parent = m_open.back();
+    return parent.object ? "." + parent.key : "[" + std::to_string(parent.items) + "]";
+  }
+  void count_item() {
+    if (!m_open.empty() && !m_open.back().object) ++m_open.back().items;
+  }
+  // The dotted path of the key being read, e.g. "input.events[2].t".
+  std::string path() const {
+    std::string out;
+    for (const Level& level : m_open) out += level.label;
+    out += "." + m_open.back().key;
+    return out.front() == '.' ? out.substr(1) : out;  // a root array starts "[0]"
+  }
+
+  std::vector<Level> m_open;
+};
+
+// `path` inside the value found at `field`.
+std::string field_path(const std::string& field, const std::string& path) {
+  if (path.empty()) return field;
+  return field.empty() ? path : field + "." + path;
 }
 
 template <class Source>
 nlohmann::json parse_bounded(Source&& source, const std::string& file, const std::string& field) {
-  int depth = 0;
   try {
-    return nlohmann::json::parse(std::forward<Source>(source), depth_guard(depth));
+    return nlohmann::json::parse(std::forward<Source>(source), ParseGuard());
   } catch (const nlohmann::json::exception& e) {  // syntax, and numbers out of range
     throw InputError(file, field, "not valid JSON: " + shorten(e.what()));
-  } catch (const std::length_error& e) {
-    throw InputError(file, field, std::string("not accepted JSON: ") + e.what());
+  } catch (const RefusedJson& e) {
+    throw InputError(file, field_path(field, e.path), std::string("not accepted JSON: ") + e.what());
   }
 }
 
@@ -66,13 +120,12 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file,
 
 std::optional<nlohmann::json> try_parse_json_text(const std::string& text, const std::string& file,
                                                   const std::string& field) {
-  int depth = 0;
   try {
-    return nlohmann::json::parse(text, depth_guard(depth));
+    return nlohmann::json::parse(text, ParseGuard());
   } catch (const nlohmann::json::exception&) {
     return std::nullopt;
-  } catch (const std::length_error& e) {
-    throw InputError(file, field, std::string("not accepted JSON: ") + e.what());
+  } catch (const RefusedJson& e) {
+    throw InputError(file, field_path(field, e.path), std::string("not accepted JSON: ") + e.what());
   }
 }
 

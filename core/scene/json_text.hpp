@@ -1,7 +1,8 @@
 #pragma once
 // JSON text in and out with bounds (docs/scene.md, Limits): parsing refuses nesting deeper than
 // max_json_depth, so no input can exhaust the stack of nlohmann's recursive parser, printer or
-// destructor; messages quote values shortened, so a huge wrong-typed value is not printed whole.
+// destructor, and a key repeated in one object, which nlohmann would silently resolve to its last
+// value; messages quote values shortened, so a huge wrong-typed value is not printed whole.
 #include <cstddef>
 #include <istream>
 #include <nlohmann/json.hpp>
@@ -17,12 +18,12 @@ constexpr int max_json_depth = 64;
 /// The longest quoted value in a message, in characters, "..." included.
 constexpr std::size_t max_quoted_chars = 200;
 
-/// Parses JSON text; throws InputError(file, field, ...) when it is not valid JSON or nests
-/// deeper than max_json_depth.
+/// Parses JSON text; throws InputError(file, field, ...) when it is not valid JSON, nests
+/// deeper than max_json_depth or repeats a key (the error then names the key's path in `field`).
 nlohmann::json parse_json_text(const std::string& text, const std::string& file,
                                const std::string& field = "");
 /// Parses `text` when it is valid JSON (nothing when it is not); throws InputError(file, field)
-/// only when it nests deeper than max_json_depth.
+/// only when it nests deeper than max_json_depth or repeats a key.
 std::optional<nlohmann::json> try_parse_json_text(const std::string& text, const std::string& file,
                                                   const std::string& field);
 /// The same for a stream (a whole file).

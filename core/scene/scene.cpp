@@ -159,7 +159,8 @@ ManipulationParams read_manipulation(JsonReader in, const ClothParams& cloth) {
 
 Perturbation read_perturbation(JsonReader in) {
   Perturbation p;
-  p.position = in.non_negative("position", in.number("position", 0.0));
+  p.position = in.at_most("position", in.non_negative("position", in.number("position", 0.0)),
+                          limits::max_perturbation);
   const int seed = in.integer("seed", 0);
   if (seed < 0) throw in.error("seed", "must not be negative");
   p.seed = static_cast<std::uint64_t>(seed);
@@ -248,6 +249,17 @@ void apply_override(nlohmann::json& scene, const std::string& assignment) {
     start = dot + 1;
   }
   *node = std::move(value);
+}
+
+std::optional<std::size_t> override_holding(const std::vector<std::string>& overrides,
+                                            const std::string& field) {
+  for (std::size_t k = overrides.size(); k-- > 0;) {
+    const std::string path = overrides[k].substr(0, overrides[k].find('='));
+    if (field.rfind(path, 0) != 0) continue;
+    if (field.size() == path.size() || field[path.size()] == '.' || field[path.size()] == '[')
+      return k;
+  }
+  return std::nullopt;
 }
 
 Scene parse_scene(const nlohmann::json& source, const std::string& file,

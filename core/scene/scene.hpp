@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -66,6 +67,11 @@ struct Scene {
 
 /// Applies one `--set key.path=value` override (value parsed as JSON, else a string).
 void apply_override(nlohmann::json& scene, const std::string& assignment);
+/// The index of the last of `overrides` (key.path=value) whose path holds `field`: the path
+/// itself, or a key or an index inside its value. An error in that field is in the value the
+/// override gave (the last override of a path wins), so it names the override, not the scene.
+std::optional<std::size_t> override_holding(const std::vector<std::string>& overrides,
+                                            const std::string& field);
 /// Parses and validates a scene; throws InputError naming `file` and the field.
 Scene parse_scene(const nlohmann::json& source, const std::string& file,
                   const std::filesystem::path& base_dir);

@@ -14,6 +14,16 @@ constexpr std::int64_t max_cloth_particles = 4'000'000;
 constexpr double max_length = 1e3;
 /// Coordinates of positions given in a scene (cloth origin, map_top, dummy heights) [m].
 constexpr double max_coordinate = 1e6;
+/// Hand positions as a recording holds them, in the sensor frame [sensor units]: the transform
+/// (scale up to 1000) maps them to the scene, where a hand must be within 10 m of the origin
+/// (max_hand_coordinate, core/input/hand_track.hpp); this bounds what `drapelab convert` copies.
+constexpr double max_sensor_coordinate = 1e6;
+/// Times of a recording or inline event, and input.time_offset [s]: within +-10^10 s, about 300
+/// years, so that Unix timestamps pass and the scene times offset + scale t stay exact enough.
+constexpr double max_recording_time = 1e10;
+/// input.time_scale lies in [1 / max_time_scale, max_time_scale]: a smaller scale would map a
+/// whole recording onto one instant of the scene.
+constexpr double max_time_scale = 1e3;
 /// Spring and collision stiffness [N/m] and damping coefficients [N s/m].
 constexpr double max_stiffness = 1e12;
 /// Particle mass [kg].
@@ -22,6 +32,10 @@ constexpr double max_mass = 1e6;
 constexpr double max_gravity = 1e3;
 /// Simulated time [s].
 constexpr double max_duration = 1e6;
+/// perturbation.position, a fraction of cloth.spacing: past half a spacing two uniformly
+/// perturbed neighbours can pass each other, so the run would start from a tangled cloth, not
+/// from a perturbed one (an ensemble's default is 1e-3).
+constexpr double max_perturbation = 0.5;
 /// Horizons of restart_error: each one reruns the scene's method after every event.
 constexpr std::size_t max_restart_horizons = 16;
 /// Rows of an output file implied by an interval: rows per frame x frames (trace.csv, frames/),

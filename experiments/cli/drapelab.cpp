@@ -14,6 +14,7 @@
 #include "experiments/cli/integrators_command.hpp"
 #include "experiments/cli/run_stats.hpp"
 #include "experiments/run/provenance.hpp"
+#include "experiments/run/run_files.hpp"
 #include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "experiments/viewer/view_command.hpp"
@@ -21,11 +22,24 @@
 
 namespace {
 
+// The scene with the --set overrides, and the run's outcome; an error in a value a --set gave
+// names that argument, not the scene file it was applied to.
+drape::RunOutcome run_with_overrides(const std::string& scene_file, const std::string& out_dir,
+                                     const std::vector<std::string>& overrides) {
+  try {
+    return drape::run_scene(drape::load_scene(scene_file, overrides), out_dir);
+  } catch (const drape::InputError& e) {
+    const auto k = e.file() == scene_file ? drape::override_holding(overrides, e.field())
+                                          : std::nullopt;
+    if (!k) throw;
+    throw drape::InputError("--set " + drape::shorten(overrides[*k]), e.field(), e.message());
+  }
+}
+
 int run_command(const std::string& scene_file, const std::string& out_dir,
                 const std::vector<std::string>& overrides, bool quiet, bool overwrite) {
   drape::check_run_folder(out_dir, overwrite);  // before anything is read or built
-  const drape::Scene scene = drape::load_scene(scene_file, overrides);
-  const drape::RunOutcome outcome = drape::run_scene(scene, out_dir);
+  const drape::RunOutcome outcome = run_with_overrides(scene_file, out_dir, overrides);
   if (outcome.status != "ok")
     std::cerr << fmt::format("drapelab: {}: {} at t = {:.6g} s: {}\n", scene_file, outcome.status,
                              outcome.summary.value("time", 0.0), outcome.reason);
@@ -118,6 +132,10 @@ int main(int argc, char** argv) {
   } catch (const drape::InputError& e) {
     std::cerr << "drapelab: error: " << e.what() << "\n";
     return drape::exit_input;
+  } catch (const drape::OutputError& e) {
+    // The first failed write stops the run: its folder has no summary.json (docs/outputs.md).
+    std::cerr << "drapelab: error: " << e.what() << "\n";
+    return drape::exit_output;
   } catch (const std::exception& e) {
     std::cerr << "drapelab: failed: " << e.what() << "\n";
     return drape::exit_failure;

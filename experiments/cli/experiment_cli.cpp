@@ -12,6 +12,7 @@
 
 #include "core/scene/input_error.hpp"
 #include "experiments/sweep/experiment.hpp"
+#include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/sweep/experiment_runner.hpp"
 
 namespace drape {
@@ -48,10 +49,12 @@ std::string python_interpreter() {
 }  // namespace
 
 int experiment_command(const std::string& file, const std::string& out_dir, int jobs,
-                       const std::string& shard, bool list_only, bool progress) {
+                       const std::string& shard, bool list_only, bool progress, bool overwrite) {
   const Experiment experiment = load_experiment(file);
+  if (!list_only) check_experiment_folder(out_dir, experiment.name, overwrite);
   ExperimentOptions options;
   options.out_dir = out_dir;
+  options.overwrite = overwrite;
   options.jobs = jobs;
   if (!shard.empty()) options.shard = parse_shard(shard);
   options.progress = progress;
@@ -114,6 +117,8 @@ ExperimentCommands::ExperimentCommands(CLI::App& app) {
   m_experiment->add_option("--shard", m_shard,
                            "run only the K-th of N slices (1-based K/N), then `drapelab merge`");
   m_experiment->add_flag("--list", m_list, "print the plan (index, run id, values) and stop");
+  m_experiment->add_flag("--overwrite", m_overwrite,
+                         "replace a run's or another experiment's files in --out (resume is lost)");
   m_experiment->add_flag("--no-progress", m_no_progress, "no progress display (on a terminal) or per-run lines (otherwise)");
   m_experiment->footer(
       "Examples:\n"
@@ -134,7 +139,8 @@ ExperimentCommands::ExperimentCommands(CLI::App& app) {
 
 int ExperimentCommands::dispatch() const {
   if (m_experiment->parsed())
-    return experiment_command(m_file, m_out, m_jobs, m_shard, m_list, !m_no_progress);
+    return experiment_command(m_file, m_out, m_jobs, m_shard, m_list, !m_no_progress,
+                              m_overwrite);
   if (m_merge->parsed()) return merge_command(m_out, m_sources);
   if (m_report->parsed()) {
     return report_command(m_out, m_report->remaining());

@@ -11,8 +11,9 @@ namespace drape {
 
 /// Runs an experiment file (or one shard of it) into out_dir; `--list` prints the plan only.
 /// Returns 0 when every run ran (diverged runs are results), 1 when some could not run.
+/// Throws InputError for an out_dir that cannot take it (check_experiment_folder).
 int experiment_command(const std::string& file, const std::string& out_dir, int jobs,
-                       const std::string& shard, bool list_only, bool progress);
+                       const std::string& shard, bool list_only, bool progress, bool overwrite);
 /// Joins the runs of shards: copies sources' runs into out_dir and writes its results table.
 /// Returns 0 when the plan is complete, 1 when runs are missing (listed on stderr).
 int merge_command(const std::string& out_dir, const std::vector<std::string>& sources);
@@ -39,6 +40,7 @@ class ExperimentCommands {
   int m_jobs = 0;
   bool m_list = false;
   bool m_no_progress = false;
+  bool m_overwrite = false;
   std::vector<std::string> m_sources;
 };
 

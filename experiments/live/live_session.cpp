@@ -25,9 +25,6 @@ namespace {
 constexpr double frame_interval = 1.0 / 30.0;  // s of wall clock between frames
 // Behind the wall clock by more than this [s] is "cannot keep up" (docs/live.md).
 constexpr double behind_tolerance = 0.1;
-// A live hand farther than this from the scene's origin in any coordinate [m] is refused: no
-// dress form scene is larger than a room, and a stray pointer or sensor value must not hold cloth.
-constexpr double max_hand_coordinate = 10.0;
 
 // A scene without input gets an empty inline one so that live keys have a track to go into;
 // the manipulator then sees no hands, as with no input at all.
@@ -61,13 +58,9 @@ std::string page_scene_json(const ClothSystem& system, const Scene& scene, bool 
       .dump();
 }
 
+// The bound of recorded hands (core/input/hand_track.hpp), for a pointer or sensor value.
 void check_hand(Hand hand, const std::optional<HandSample>& sample, const std::string& source) {
-  if (!sample) return;
-  for (int k = 0; k < 3; ++k)
-    if (!(std::abs(sample->position[k]) <= max_hand_coordinate))  // NaN fails too
-      throw InputError(source, std::string(hand == Hand::Left ? "left." : "right.") + "xyz"[k],
-                       fmt::format("{} is not a scene coordinate within +-{} m",
-                                   sample->position[k], max_hand_coordinate));
+  if (sample) check_hand_position(sample->position, source, hand == Hand::Left ? "left" : "right");
 }
 
 }  // namespace

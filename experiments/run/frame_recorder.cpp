@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/dummy/dummy.hpp"
+#include "experiments/run/run_files.hpp"
 #include "experiments/run/vtk_writer.hpp"
 
 namespace drape {
@@ -22,10 +23,10 @@ FrameRecorder::FrameRecorder(const OutputOptions& options, const std::filesystem
       m_trace_interval(options.trace_interval),
       m_vtk_interval(options.vtk_interval),
       m_frames_dir(out_dir / "frames"),
-      m_series(out_dir / "frames" / "frames.vtk.series") {
+      m_series(out_dir / "frames" / "frames.vtk.series"),
+      m_trace_file(out_dir / "trace.csv") {
   if (m_trace_interval > 0.0) {
-    m_trace.emplace(out_dir / "trace.csv");
-    if (!*m_trace) throw std::runtime_error("cannot write " + (out_dir / "trace.csv").string());
+    m_trace.emplace(open_for_writing(m_trace_file));
     *m_trace << "t,index,x,y,z,vx,vy,vz,fixed,contact,event\n";
   }
   if (m_vtk_interval > 0.0) {
@@ -92,6 +93,11 @@ void FrameRecorder::write_trace(double t, const Eigen::VectorXd& y, bool event) 
                             t, i, x.x(), x.y(), x.z(), v.x(), v.y(), v.z(),
                             m_system.constraints().is_fixed(i) ? 1 : 0, contact_index(m_system, y, i), event ? 1 : 0);
   }
+  check_written(*m_trace, m_trace_file);
+}
+
+void FrameRecorder::on_end(const Simulation& /*simulation*/) {
+  if (m_trace) finish_written(*m_trace, m_trace_file);
 }
 
 }  // namespace drape

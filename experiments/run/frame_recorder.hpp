@@ -28,6 +28,8 @@ class FrameRecorder : public SimulationObserver {
                 const ClothSystem& system);
   void on_start(const Simulation& simulation) override;
   void on_step(const Simulation& simulation, bool event) override;
+  /// Flushes trace.csv; a failed write throws OutputError (run_files.hpp).
+  void on_end(const Simulation& simulation) override;
   bool interpolates() const override { return m_trace.has_value() || m_vtk_interval > 0.0; }
 
  private:
@@ -47,6 +49,7 @@ class FrameRecorder : public SimulationObserver {
   std::filesystem::path m_frames_dir;
   std::optional<std::ofstream> m_trace;
   VtkSeries m_series;
+  std::filesystem::path m_trace_file;
 };
 
 }  // namespace drape

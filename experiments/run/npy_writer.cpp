@@ -6,6 +6,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "experiments/run/run_files.hpp"
+
 namespace drape {
 
 namespace {
@@ -26,7 +28,7 @@ NpyWriter::NpyWriter(std::filesystem::path path, std::string descr, std::size_t 
                                      std::multiplies<>())),
       m_record_shape(std::move(record_shape)),
       m_file(m_path, std::ios::binary) {
-  if (!m_file) throw std::runtime_error("cannot write " + m_path.string());
+  check_written(m_file, m_path);
   write_header();
 }
 
@@ -52,13 +54,13 @@ void NpyWriter::write_header() {
   const char length_bytes[2] = {static_cast<char>(length & 0xff), static_cast<char>(length >> 8)};
   m_file.write(length_bytes, 2);
   m_file.write(dict.data(), static_cast<std::streamsize>(dict.size()));
-  if (!m_file) throw std::runtime_error("cannot write " + m_path.string());
+  check_written(m_file, m_path);
 }
 
 void NpyWriter::append(const void* data) {
   m_file.seekp(0, std::ios::end);
   m_file.write(static_cast<const char*>(data), static_cast<std::streamsize>(m_record_bytes));
-  if (!m_file) throw std::runtime_error("cannot write " + m_path.string());
+  check_written(m_file, m_path);
   ++m_records;
 }
 
@@ -66,7 +68,7 @@ void NpyWriter::close() {
   if (!m_file.is_open()) return;
   write_header();
   m_file.close();
-  if (!m_file) throw std::runtime_error("cannot write " + m_path.string());
+  check_written(m_file, m_path);
 }
 
 }  // namespace drape

@@ -14,8 +14,8 @@ namespace drape {
 class NpyWriter {
  public:
   /// `descr` is NumPy's type string ("<f8", "<f4", "<i4", "|u1"), `record_shape` the shape of
-  /// one record (the array is (records, record_shape...)). Throws std::runtime_error when the
-  /// file cannot be written.
+  /// one record (the array is (records, record_shape...)). Throws OutputError (run_files.hpp)
+  /// when the file cannot be written.
   NpyWriter(std::filesystem::path path, std::string descr, std::size_t item_size,
             std::vector<std::size_t> record_shape);
   NpyWriter(const NpyWriter&) = delete;

@@ -2,13 +2,28 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
+#include <cstring>
 #include <stdexcept>
 
 namespace drape {
 
+void check_written(const std::ostream& out, const std::filesystem::path& file) {
+  if (out) return;
+  const int error = errno;  // the failed write's, read before anything else can change it
+  throw OutputError("cannot write " + file.string() +
+                    (error != 0 ? std::string(": ") + std::strerror(error) : std::string()));
+}
+
+void finish_written(std::ostream& out, const std::filesystem::path& file) {
+  out.flush();
+  check_written(out, file);
+}
+
 std::ofstream open_for_writing(const std::filesystem::path& file) {
+  errno = 0;
   std::ofstream out(file);
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  check_written(out, file);
   return out;
 }
 
@@ -25,6 +40,7 @@ void write_state_csv(const std::filesystem::path& file, const ClothSystem& syste
                        cloth.row_of(i), cloth.col_of(i), x.x(), x.y(), x.z(), v.x(), v.y(),
                        v.z(), system.constraints().is_fixed(i) ? 1 : 0);
   }
+  finish_written(out, file);
 }
 
 void write_dummy_csv(const std::filesystem::path& file, const Dummy& dummy) {
@@ -36,6 +52,7 @@ void write_dummy_csv(const std::filesystem::path& file, const Dummy& dummy) {
                        o / dummy.points(), o % dummy.points(), p.x(), p.y(), p.z(), n.x(), n.y(),
                        n.z());
   }
+  finish_written(out, file);
 }
 
 void write_file_atomic(const std::filesystem::path& file, const std::string& suffix,
@@ -47,9 +64,11 @@ void write_file_atomic(const std::filesystem::path& file, const std::string& suf
   {
     std::ofstream out = open_for_writing(tmp);
     write(out);
-    if (!out.flush()) throw std::runtime_error("cannot write " + tmp.string());
+    finish_written(out, tmp);
   }
-  std::filesystem::rename(tmp, file);
+  std::error_code ec;
+  std::filesystem::rename(tmp, file, ec);
+  if (ec) throw OutputError("cannot write " + file.string() + ": " + ec.message());
 }
 
 void write_json(const std::filesystem::path& file, const nlohmann::json& value,

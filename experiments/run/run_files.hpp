@@ -5,13 +5,26 @@
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 
 #include "core/model/cloth_system.hpp"
 
 namespace drape {
 
-/// Opens a file for writing; throws std::runtime_error naming it when it cannot.
+/// A run file that could not be written (a full disk, a quota, a file size limit): the run stops
+/// at the first failed write with exit status 4 and leaves no summary.json (docs/outputs.md).
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Throws OutputError naming `file` and the system's reason once `out` has failed. Rows are
+/// buffered: a failed write shows when the buffer is written, within a buffer's length.
+void check_written(const std::ostream& out, const std::filesystem::path& file);
+/// Flushes `out`, then check_written: the end of a file.
+void finish_written(std::ostream& out, const std::filesystem::path& file);
+/// Opens a file for writing; throws OutputError naming it when it cannot.
 std::ofstream open_for_writing(const std::filesystem::path& file);
 /// state.csv: `index,row,col,x,y,z,vx,vy,vz,fixed` for every cloth particle.
 void write_state_csv(const std::filesystem::path& file, const ClothSystem& system,

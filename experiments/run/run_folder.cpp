@@ -47,6 +47,7 @@ std::vector<std::string> run_files_in(const fs::path& dir) {
 }
 
 void check_run_folder(const fs::path& dir, bool overwrite) {
+  if (dir.empty()) throw InputError("--out", "", "is empty: name the output folder");
   std::error_code ec;
   const auto status = fs::status(dir, ec);
   if (fs::exists(status)) {

@@ -12,7 +12,15 @@
 namespace drape {
 
 /// Exit statuses of `drapelab` (docs/model.md section 9).
-enum ExitCode : int { exit_ok = 0, exit_failure = 1, exit_input = 2, exit_diverged = 3 };
+/// drapelab's exit statuses (README.md): exit_output when a run file could not be written
+/// (OutputError: a full disk, a quota), the folder then having no summary.json.
+enum ExitCode : int {
+  exit_ok = 0,
+  exit_failure = 1,
+  exit_input = 2,
+  exit_diverged = 3,
+  exit_output = 4
+};
 
 /// How a run ended: `ok`, `diverged` or `failed` (a solver could not take a step).
 struct RunOutcome {

@@ -21,7 +21,7 @@ bool OutputClock::due(const Simulation& simulation) {
 }
 
 EnergyWriter::EnergyWriter(const std::filesystem::path& file, double interval, double duration)
-    : m_out(open_for_writing(file)), m_clock(interval, duration) {
+    : m_file(file), m_out(open_for_writing(file)), m_clock(interval, duration) {
   m_out << "t,kinetic,spring,gravity,collision,total\n";
 }
 
@@ -41,10 +41,13 @@ void EnergyWriter::write(const Simulation& simulation) {
   const EnergyBreakdown& e = m_last;
   m_out << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", simulation.time(),
                        e.kinetic, e.spring, e.gravity, e.collision, e.total());
+  check_written(m_out, m_file);
 }
 
+void EnergyWriter::on_end(const Simulation& /*simulation*/) { finish_written(m_out, m_file); }
+
 HandsWriter::HandsWriter(const std::filesystem::path& file, double interval, double duration)
-    : m_out(open_for_writing(file)), m_clock(interval, duration) {
+    : m_file(file), m_out(open_for_writing(file)), m_clock(interval, duration) {
   m_out << "t,hand,available,x,y,z,candidate,distance,held\n";
 }
 
@@ -60,6 +63,9 @@ void HandsWriter::write(const Simulation& simulation) {
     m_out << fmt::format("{:.17g},{},{},{:.17g},{:.17g},{:.17g},{},{:.17g},{}\n", t,
                          hand_name(h.hand), h.available ? 1 : 0, h.position.x(),
                          h.position.y(), h.position.z(), h.candidate, h.distance, h.held);
+  check_written(m_out, m_file);
 }
+
+void HandsWriter::on_end(const Simulation& /*simulation*/) { finish_written(m_out, m_file); }
 
 }  // namespace drape

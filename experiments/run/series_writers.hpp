@@ -24,12 +24,13 @@ class OutputClock {
 };
 
 /// energy.csv: `t,kinetic,spring,gravity,collision,total` at t = 0 and at the output times,
-/// and the drift of the total over those rows.
+/// and the drift of the total over those rows. A failed write throws OutputError (run_files.hpp).
 class EnergyWriter : public SimulationObserver {
  public:
   EnergyWriter(const std::filesystem::path& file, double interval, double duration);
   void on_start(const Simulation& simulation) override;
   void on_step(const Simulation& simulation, bool event) override;
+  void on_end(const Simulation& simulation) override;
 
   const EnergyBreakdown& initial() const { return m_initial; }
   /// The energy of the last row written.
@@ -44,6 +45,7 @@ class EnergyWriter : public SimulationObserver {
  private:
   void write(const Simulation& simulation);
 
+  std::filesystem::path m_file;
   std::ofstream m_out;
   OutputClock m_clock;
   EnergyBreakdown m_initial, m_last;
@@ -56,10 +58,12 @@ class HandsWriter : public SimulationObserver {
   HandsWriter(const std::filesystem::path& file, double interval, double duration);
   void on_start(const Simulation& simulation) override;
   void on_step(const Simulation& simulation, bool event) override;
+  void on_end(const Simulation& simulation) override;
 
  private:
   void write(const Simulation& simulation);
 
+  std::filesystem::path m_file;
   std::ofstream m_out;
   OutputClock m_clock;
 };

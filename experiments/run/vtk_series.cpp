@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "experiments/run/run_files.hpp"
+
 namespace drape {
 
 void VtkSeries::add(const std::string& name, double t) {
@@ -13,9 +15,9 @@ void VtkSeries::add(const std::string& name, double t) {
   // Write beside and rename, so that a reader never sees half a file.
   const std::filesystem::path partial = m_file.string() + ".partial";
   {
-    std::ofstream out(partial);
+    std::ofstream out = open_for_writing(partial);
     out << nlohmann::json{{"file-series-version", "1.0"}, {"files", files}}.dump(1) << "\n";
-    if (!out) throw std::runtime_error("cannot write " + partial.string());
+    finish_written(out, partial);
   }
   std::filesystem::rename(partial, m_file);
 }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/dummy/dummy.hpp"
+#include "experiments/run/run_files.hpp"
 
 namespace drape {
 
@@ -16,8 +17,7 @@ void write_int_values(std::ofstream& out, const std::vector<int>& values) {
 }
 
 std::ofstream open_vtk(const std::filesystem::path& file, const std::string& title) {
-  std::ofstream out(file);
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  std::ofstream out = open_for_writing(file);
   out << "# vtk DataFile Version 3.0\n" << title << "\nASCII\nDATASET POLYDATA\n";
   return out;
 }
@@ -56,7 +56,7 @@ void write_cloth_vtk(const std::filesystem::path& file, const ClothSystem& syste
   write_int_values(out, data.held);
   out << fmt::format("contact 1 {} int\n", n);
   write_int_values(out, data.contact);
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  finish_written(out, file);
 }
 
 void write_dummy_vtk(const std::filesystem::path& file, const Dummy& dummy) {
@@ -74,7 +74,7 @@ void write_dummy_vtk(const std::filesystem::path& file, const Dummy& dummy) {
     const Vec3 v = dummy.normal(o);
     out << fmt::format("{:.17g} {:.17g} {:.17g}\n", v.x(), v.y(), v.z());
   }
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  finish_written(out, file);
 }
 
 }  // namespace drape

@@ -15,6 +15,7 @@
 #include "core/scene/json_reader.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
+#include "experiments/sweep/plan_size.hpp"
 #include "core/scene/json_text.hpp"
 
 namespace drape {
@@ -260,6 +261,10 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
   if (in.has("reference")) {
     e.reference = read_overrides(in, "reference");
     if (e.reference.empty()) throw in.error("reference", "must set at least one value");
+    // The report compares every run with its reference particle by particle.
+    for (const auto& [key, value] : e.reference)
+      if (key == "cloth" || key == "cloth.rows" || key == "cloth.cols")
+        throw in.error("reference." + key, "the reference must keep the runs' grid");
   }
   if (in.has("restart_error")) {
     if (e.reference.empty())
@@ -290,6 +295,7 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
   }
   in.finish();
   check_disjoint(in, e);
+  check_plan_size(e);
   return e;
 }
 

@@ -15,6 +15,7 @@
 #include "core/scene/json_reader.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/sweep/child_runs.hpp"
+#include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/sweep/progress_reporter.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "experiments/sweep/results_table.hpp"
@@ -165,15 +166,50 @@ nlohmann::json ended_row(const RunSpec& run, const fs::path& dir, const ChildEnd
   return row;
 }
 
+// The field of the experiment (or of its cases file) that gave `run` its override of `key`:
+// an error in that value is the experiment's, not the scene's it was applied to.
+std::pair<std::string, std::string> override_origin(const Experiment& e, const RunSpec& run,
+                                                    const std::string& key) {
+  const auto sets = [&](const std::vector<Override>& list) {
+    return std::any_of(list.begin(), list.end(), [&](const Override& o) { return o.first == key; });
+  };
+  if (run.is_reference && sets(e.reference)) return {e.file, "reference." + key};
+  for (const auto& swept : e.sweep)
+    if (swept.first == key) return {e.file, "sweep." + key};
+  if (key == repeat_parameter) return {e.file, "repeats"};
+  if (key == "duration" && e.source.contains("duration")) return {e.file, "duration"};
+  if (sets(e.set)) return {e.file, "set." + key};
+  for (std::size_t c = 0; c < e.cases.size(); ++c)
+    for (const auto& [case_key, value] : e.cases[c])
+      if (case_key == key && std::find(run.parameters.begin(), run.parameters.end(),
+                                       Override(key, value)) != run.parameters.end())
+        return {e.cases_file.empty() ? e.file : e.cases_file, fmt::format("cases[{}].{}", c, key)};
+  return {e.file, key};  // restart_error, which plan_run adds
+}
+
 // Bad overrides would fail every run alike: find them before spending any time.
-void validate_runs(const std::vector<RunSpec>& runs) {
+void validate_runs(const Experiment& experiment, const std::vector<RunSpec>& runs) {
   for (const RunSpec& run : runs) {
     auto assignments = run.assignments();
     if (run.bisect) assignments = with(assignments, run.bisect->parameter, run.bisect->low);
-    const Scene scene = load_scene(run.scene_path.string(), assignments);
-    read_integrator_options(scene.integrator, scene.file, "integrator");
-    if (scene.restart_error.enabled())
-      read_integrator_options(scene.restart_error.reference, scene.file, "restart_error.reference");
+    try {
+      const Scene scene = load_scene(run.scene_path.string(), assignments);
+      read_integrator_options(scene.integrator, scene.file, "integrator");
+      if (scene.restart_error.enabled())
+        read_integrator_options(scene.restart_error.reference, scene.file,
+                                "restart_error.reference");
+    } catch (const InputError& e) {
+      if (e.file() != run.scene_path.string()) throw;
+      const std::optional<std::size_t> k = override_holding(assignments, e.field());
+      if (!k) throw;
+      // The bisection's probe is the last assignment; the rest are the run's overrides.
+      const bool probe = *k >= run.overrides.size();
+      const std::string key = probe ? run.bisect->parameter : run.overrides[*k].first;
+      const auto [file, field] = probe ? std::make_pair(experiment.file, std::string("bisect.parameter"))
+                                       : override_origin(experiment, run, key);
+      throw InputError(file, field + e.field().substr(key.size()),
+                       e.message() + " (in " + run.scene + ")");
+    }
   }
 }
 
@@ -235,8 +271,9 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
   {
     std::vector<RunSpec> to_check;
     for (const RunSpec* run : slice) to_check.push_back(*run);
-    validate_runs(to_check);
+    validate_runs(experiment, to_check);
   }
+  if (options.overwrite) clear_experiment_folder(options.out_dir);
 
   fs::create_directories(options.out_dir / "runs");
   const nlohmann::json header = experiment_header(experiment, plan);

@@ -17,6 +17,7 @@ struct ExperimentOptions {
   std::optional<Shard> shard;  ///< run only this slice of the plan
   bool progress = false;       ///< show progress on stderr ...
   bool terminal = false;       ///< ... redrawn in place (a terminal) or one line per finished run
+  bool overwrite = false;      ///< clear out_dir's run and experiment files once the plan is valid
 };
 
 /// What happened to the runs of one invocation.

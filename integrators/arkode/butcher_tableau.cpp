@@ -15,6 +15,11 @@ namespace {
 // within 1.0e-12. 1e-10 accepts them and still rejects a wrong digit up to the ninth.
 constexpr double tolerance = 1e-10;
 
+// No published method has a coefficient near this (the largest in ARKODE's own DIRK tables is
+// 35.1); near 1e300 the stage sums ARKODE forms overflow and the run fails instead of being
+// refused.
+constexpr double max_coefficient = 1e3;
+
 bool near(double value, double expected) { return std::abs(value - expected) <= tolerance; }
 
 double sum(const std::vector<double>& values) {
@@ -33,10 +38,17 @@ std::vector<double> read_matrix_rows(JsonReader& in, std::size_t s) {
       throw in.error("A", "must be square: every row has " + std::to_string(s) + " numbers");
     for (const auto& value : row) {
       if (!value.is_number()) throw in.error("A", "must hold numbers");
-      flat.push_back(value.get<double>());
+      flat.push_back(in.within("A", value.get<double>(), max_coefficient));
     }
   }
   return flat;
+}
+
+// in.numbers(key), each within +-max_coefficient.
+std::vector<double> coefficients(JsonReader& in, const std::string& key) {
+  std::vector<double> values = in.numbers(key);
+  for (const double x : values) in.within(key, x, max_coefficient);
+  return values;
 }
 
 }  // namespace
@@ -62,7 +74,7 @@ ButcherTableau read_butcher_tableau(const nlohmann::json& object, const std::str
                                     const std::string& path) {
   JsonReader in(object, file, path);
   ButcherTableau t;
-  t.c = in.numbers("c");
+  t.c = coefficients(in, "c");
   const std::size_t s = t.c.size();
   if (s == 0) throw in.error("c", "must hold at least one node");
   const std::vector<double> flat = read_matrix_rows(in, s);
@@ -74,6 +86,12 @@ ButcherTableau read_butcher_tableau(const nlohmann::json& object, const std::str
       if (t.A[i][j] != 0.0)
         throw in.error("A", "must be lower triangular for arkode-dirk (row " + std::to_string(i) +
                                 ", column " + std::to_string(j) + " is not 0)");
+  // ARKODE refuses a DIRK table without an implicit stage only when the run starts (exit 3).
+  bool implicit = false;
+  for (std::size_t i = 0; i < s; ++i) implicit = implicit || t.A[i][i] != 0.0;
+  if (!implicit)
+    throw in.error("A", "has only zeros on its diagonal: that is an explicit method, and "
+                        "arkode-dirk needs at least one implicit stage");
   for (std::size_t i = 0; i < s; ++i) {
     double row = 0.0;
     for (const double a : t.A[i]) row += a;
@@ -81,11 +99,11 @@ ButcherTableau read_butcher_tableau(const nlohmann::json& object, const std::str
       throw in.error("c", "node " + std::to_string(i) + " must equal row " + std::to_string(i) +
                               " of A summed (" + std::to_string(row) + ")");
   }
-  t.b = in.numbers("b");
+  t.b = coefficients(in, "b");
   if (t.b.size() != s) throw in.error("b", "must have one weight per node of c");
   if (!near(sum(t.b), 1.0)) throw in.error("b", "weights must sum to 1");
   if (in.has("d")) {
-    t.d = in.numbers("d");
+    t.d = coefficients(in, "d");
     if (t.d.size() != s) throw in.error("d", "must have one weight per node of c");
     if (!near(sum(t.d), 1.0)) throw in.error("d", "weights must sum to 1");
   }

@@ -138,6 +138,7 @@ def write_experiment(directory, scenes=("scenes/a.json", "scenes/b.json"), steps
                          "integrator": "leapfrog", "integrator.name": "leapfrog", "integrator.dt": dt,
                          "status": "ok", "steps": int(1 / dt), "rhs_evals": int(1 / dt),
                          "wall_seconds": 0.1 * (k + 1), "events": len(events)})
+            (run / "result.json").write_text(json.dumps(runs[-1]))
     columns = list(runs[0])
     (directory / "results.json").write_text(json.dumps({
         "name": "synthetic", "question": "q?", "metrics": [], "parameters": ["integrator.name", "integrator.dt"],

@@ -161,6 +161,39 @@ class ReportBadInputTest(unittest.TestCase):
             self.assertNotIn("Traceback", done.stderr)
 
 
+    def report(self, directory):
+        done = subprocess.run([sys.executable, str(ANALYSIS / "report.py"), str(directory)],
+                              capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=str(ANALYSIS)))
+        self.assertNotIn("Traceback", done.stderr)
+        return done
+
+    def test_a_run_whose_files_are_gone_is_refused_not_reported(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            runs = runfolder.write_experiment(Path(tmp))
+            run = Path(tmp) / runs[1]["run_dir"]
+            (run / "summary.json").unlink()
+            (run / "energy.csv").unlink()
+            done = self.report(tmp)
+            self.assertEqual(done.returncode, 2, done.stderr)
+            self.assertIn(f"runs listed in results.json lack their files: {run / 'summary.json'}, "
+                          f"{run / 'energy.csv'} (remove", done.stderr)
+            self.assertFalse((Path(tmp) / "report").exists())
+
+    def test_a_missing_folder_a_file_and_a_run_folder_are_refused_with_exit_2(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            a_file, run = Path(tmp) / "a_file", Path(tmp) / "run"
+            a_file.write_text("x")
+            run.mkdir()
+            runfolder.write_summary(run)
+            for directory, message in ((Path(tmp) / "nope", "nope: no such folder"),
+                                       (a_file, "a_file: not a folder"),
+                                       (Path(tmp), f"{tmp}: no results.json"),
+                                       (run, "run: a run's folder, not an experiment's: no results.json")):
+                done = self.report(directory)
+                self.assertEqual(done.returncode, 2, done.stderr)
+                self.assertIn(message, done.stderr)
+
+
 class ReportProvenanceAndViewerTest(unittest.TestCase):
     """The provenance block from the results rows, the runs paired side by side in the viewer,
     and the viewer links of report.html (the pages themselves: report_viewer_check.py)."""

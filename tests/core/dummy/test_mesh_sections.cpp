@@ -256,7 +256,9 @@ TEST_F(MeshSections, BadInputNamesTheSceneFieldAndTheMeshFile) {
     spec[key] = value;
     return spec;
   };
-  expect_input_error({{"mesh", "missing.obj"}}, "dummy.mesh", "missing.obj: cannot open");
+  expect_input_error({{"mesh", "missing.obj"}}, "dummy.mesh", "missing.obj: no such file");
+  expect_input_error({{"mesh", "/dev/zero"}}, "dummy.mesh", "/dev/zero: not a regular file");
+  expect_input_error({{"mesh", "."}}, "dummy.mesh", ".: is a directory, not a file");
   expect_input_error({{"mesh", "garbage.obj"}}, "dummy.mesh", "garbage.obj: ");
   expect_input_error({{"mesh", "no_faces.obj"}}, "dummy.mesh", "no_faces.obj: the OBJ file has");
   expect_input_error({{"mesh", "nan.obj"}}, "dummy.mesh",

@@ -146,6 +146,16 @@ TEST(InputConfig, ErrorsNameTheSceneFileAndTheDottedPath) {
   bad(R"({"transform": {"translation": [0, 1]}})", {"input.transform.translation"});
   bad(R"({"transform": {"shift": [0, 1, 0]}})", {"input.transform.shift", "unknown key"});
   bad(R"({"time_scale": 0})", {"input.time_scale", "positive"});
+  bad(R"({"time_scale": 1e-300})", {"input.time_scale: must be at least 0.001"});
+  bad(R"({"time_scale": 1e300})", {"input.time_scale: must be at most 1000.0"});
+  bad(R"({"time_offset": 1e300})", {"input.time_offset: must be within +-10000000000.0"});
+  // Hands are checked in the scene frame, where the live mode checks them too.
+  bad(R"({"events": [{"t": 0}, {"t": 1, "right": [1e300, 0, 0]}]})",
+      {"input.events[1].right: must be within +-1000000.0"});
+  bad(R"({"events": [{"t": 0, "left": [0, 1, 0]}, {"t": 1, "right": [0, 20, 0]}]})",
+      {"input.events[1].right.y: 20 is not a scene coordinate within +-10 m"});
+  bad(R"({"events": [{"t": 0, "left": [0, 1, 0]}], "transform": {"scale": 100}})",
+      {"input.events[0].left.y: 100 is not a scene coordinate within +-10 m"});
   bad(R"({"max_gap": -0.1})", {"input.max_gap"});
   bad(R"({"inferred": "maybe"})", {"input.inferred", "\"use\", \"drop\""});
   bad(R"({"smoothing": {"filter": "kalman"}})", {"input.smoothing.filter"});
@@ -163,14 +173,17 @@ TEST(InputConfig, ErrorsNameTheSceneFileAndTheDottedPath) {
 
 TEST(InputConfig, ErrorsInsideTheRecordingNameItsLine) {
   const auto dir = test::test_dir();
-  test::write_file(dir, "bad.jsonl",
-                   "{\"format\": \"drapelab-recording\", \"version\": 1}\n"
-                   "{\"t\": 0}\n{\"t\": 0}\n");
-  expect_input_error(
-      [&] {
-        load_hand_input(json::parse(R"({"recording": "bad.jsonl"})"), "s.json", "input", dir);
-      },
-      {"bad.jsonl", "line 3.t"});
+  const auto error_of = [&](const std::string& frames, std::initializer_list<std::string> parts) {
+    test::write_file(dir, "r.jsonl",
+                     "{\"format\": \"drapelab-recording\", \"version\": 1}\n" + frames);
+    expect_input_error(
+        [&] { load_hand_input(json::parse(R"({"recording": "r.jsonl"})"), "s.json", "input", dir); },
+        parts);
+  };
+  error_of("{\"t\": 0}\n{\"t\": 0}\n", {"r.jsonl", "line 3.t"});
+  // Hands are checked in the scene frame, frame by frame.
+  error_of("{\"t\": 0, \"left\": [0, 1, 0]}\n{\"t\": 0.5, \"left\": [0, 11, 0]}\n",
+           {"r.jsonl: frame 2 (t = 0.5 s).left.y: 11 is not a scene coordinate within +-10 m"});
 }
 
 }  // namespace

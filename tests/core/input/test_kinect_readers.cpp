@@ -128,6 +128,8 @@ TEST(KinectV2Csv, BadInputNamesFileAndLine) {
   check("nan.csv", csv_line("200", {{7, {"nan", "0", "2", "2"}}}), {"line 2: HandLeft.X"});
   check("inf.csv", csv_line("200", {{11, {"0", "inf", "2", "2"}}}), {"line 2: HandRight.Y"});
   check("text.csv", csv_line("200", {{3, {"0", "0", "abc", "2"}}}), {"line 2: Head.Z"});
+  check("far.csv", csv_line("200", {{11, {"0", "1e300", "2", "2"}}}),
+        {"line 2: HandRight.Y: must be within +-1000000.0"});
   check("state.csv", csv_line("200", {{11, {"0", "0", "2", "3"}}}),
         {"line 2: HandRight.TrackingState"});
   check("back.csv", csv_line("50", {}), {"line 2: timestamp", "increase"});

@@ -25,7 +25,7 @@ Recording sample_recording() {
   a.keys = {"a", "m"};
   HandFrame b;
   b.t = 1.0 / 3.0;
-  b.right = HandSample{Vec3(-1e300, 5e-324, 0.0), false};
+  b.right = HandSample{Vec3(-1e6, 5e-324, 0.0), false};  // the bound itself, and a denormal
   HandFrame c;
   c.t = 2.0;
   c.keys = {"r"};
@@ -118,6 +118,7 @@ TEST(Recording, InlineFramesAndTheirErrors) {
   bad(R"([{"t": 0, "hand": [0, 0, 0]}])", {"input.events[0].hand", "unknown key"});
   bad(R"([{"t": 0, "keys": "a"}])", {"input.events[0].keys"});
   bad(R"([{"t": 0, "keys": [""]}])", {"input.events[0].keys"});
+  bad(R"([{"t": 0, "keys": ["zz"]}])", {"input.events[0].keys", "got \"zz\""});
   bad(R"([{"t": 0, "inferred": ["left"]}])", {"input.events[0].inferred", "absent"});
   bad(R"({"t": 0})", {"input.events", "array"});
 }
@@ -145,6 +146,17 @@ TEST(Recording, BadNativeFilesNameFileAndLine) {
   check("version.jsonl", "{\"format\": \"drapelab-recording\", \"version\": 2}\n",
         {"line 1 (header).version"});
   check("empty.jsonl", "\n", {"header"});
+  // Values no sensor gives, and files that would replay nothing.
+  check("far.jsonl", header + frame1 + "{\"t\": 1, \"right\": [0, 1e300, 0]}\n",
+        {"line 3.right: must be within +-1000000.0"});
+  check("late.jsonl", header + frame1 + "{\"t\": 1e300}\n",
+        {"line 3.t: must be within +-10000000000.0"});
+  check("key.jsonl", header + frame1 + "{\"t\": 1, \"keys\": [\"a\", \"zz\"]}\n",
+        {"line 3.keys: expected \"r\" (release), \"a\" (attach) or \"m\" (map), got \"zz\""});
+  check("frameless.jsonl", header + "\n", {"frameless.jsonl: no frames after the header"});
+  // A Unix timestamp is a recording time.
+  const auto unix_time = write_file(dir, "unix.jsonl", header + "{\"t\": 1732700000.5}\n");
+  EXPECT_EQ(read_drapelab_recording(unix_time).frames.at(0).t, 1732700000.5);
 }
 
 TEST(Recording, FormatDetectionRejectsUnknownContent) {

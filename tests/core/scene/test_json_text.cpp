@@ -36,6 +36,32 @@ TEST(JsonText, TryParseFallsBackOnSyntaxButNotOnDepth) {
             "--set: x: not accepted JSON: nested deeper than 64 levels");
 }
 
+TEST(JsonText, ARepeatedKeyIsAnInputErrorNamingItsPath) {
+  const std::string repeated =
+      ": not accepted JSON: the key is repeated in its object (only one value can be kept)";
+  EXPECT_EQ(input_error_message([] {
+              parse_json_text(R"({"cloth": {"rows": 4, "cols": 2, "rows": 5}})", "s.json");
+            }),
+            "s.json: cloth.rows" + repeated);
+  EXPECT_EQ(input_error_message([] {
+              parse_json_text(R"({"input": {"events": [{"t": 0}, {"keys": [], "t": 1, "t": 2}]}})",
+                              "s.json");
+            }),
+            "s.json: input.events[1].t" + repeated);
+  EXPECT_EQ(input_error_message([] { parse_json_text(R"([[], {"a": 1, "a": 1}])", "s.json"); }),
+            "s.json: [1].a" + repeated);
+  EXPECT_EQ(input_error_message([] { parse_json_text(R"({"t": 0, "t": 1})", "r.jsonl", "line 3"); }),
+            "r.jsonl: line 3.t" + repeated);
+  EXPECT_EQ(input_error_message([] { try_parse_json_text(R"({"a": 1, "a": 2})", "--set", "cloth"); }),
+            "--set: cloth.a" + repeated);
+  const std::string file = ::testing::TempDir() + "repeated_key.json";
+  std::ofstream(file) << R"({"name": "x", "scenes": [], "name": "y"})";
+  EXPECT_EQ(input_error_message([&] { read_json_file(file); }), file + ": name" + repeated);
+  // The same key in different objects, at any depth, is no repetition.
+  EXPECT_EQ(parse_json_text(R"([{"t": 0, "a": {"t": 1}}, {"t": 2}])", "f").dump(),
+            R"([{"a":{"t":1},"t":0},{"t":2}])");
+}
+
 TEST(JsonText, QuotedValuesAreShortAndShallow) {
   EXPECT_EQ(quote_json(nlohmann::json({1, 2})), "[1, 2]");
   EXPECT_EQ(quote_json(nlohmann::json::parse(nested(10))), "[[[[[...]]]]]");

@@ -125,6 +125,12 @@ TEST(SceneLimits, ValuesWhoseProductsOverflowAreRefused) {
             "scene.json: gravity: must be within +-1000.0");
   EXPECT_EQ(error_for(with("duration=1e300")),
             "scene.json: duration: must be at most 1000000.0, got 1e+300");
+  // A fraction of the spacing: 1e6 of it started a run at 10^6 m/s, 1e300 diverged at once.
+  EXPECT_EQ(error_for(with("perturbation.position=1e6")),
+            "scene.json: perturbation.position: must be at most 0.5, got 1000000.0");
+  EXPECT_EQ(error_for(with("perturbation.position=1e300")),
+            "scene.json: perturbation.position: must be at most 0.5, got 1e+300");
+  EXPECT_EQ(error_for(with("perturbation.position=0.5")), "no error");
 }
 
 TEST(SceneLimits, OutputIntervalsMustAdvanceTimeAndBoundTheFiles) {
@@ -151,6 +157,17 @@ TEST(SceneLimits, HugeOverrideValuesAreShortenedInTheMessage) {
       error_for(with("cloth.rows=\"" + std::string(50'000'000, 'x') + "\""));
   EXPECT_EQ(message.rfind("scene.json: cloth.rows: expected an integer, got \"xxx", 0), 0u);
   EXPECT_LT(message.size(), 300u);
+}
+
+TEST(Scene, AnErrorInsideAnOverriddenValueFindsItsOverride) {
+  const std::vector<std::string> overrides = {"cloth.k_structural=5", "pins=[[0, 0, 1]]",
+                                              "cloth.k=1", "cloth.k_structural=6"};
+  EXPECT_EQ(override_holding(overrides, "cloth.k_structural"), 3u);  // the last one wins
+  EXPECT_EQ(override_holding(overrides, "pins[0]"), 1u);
+  EXPECT_EQ(override_holding(overrides, "cloth.k"), 2u);
+  EXPECT_FALSE(override_holding(overrides, "cloth.k_shear").has_value());
+  EXPECT_FALSE(override_holding(overrides, "cloth").has_value());
+  EXPECT_FALSE(override_holding({}, "duration").has_value());
 }
 
 TEST(Scene, DirectionsMustBeOrthogonalUnitVectors) {

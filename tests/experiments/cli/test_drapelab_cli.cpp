@@ -94,14 +94,16 @@ TEST(DrapelabRun, SetOverridesAreValidatedLikeTheFile) {
   const fs::path scene = write_scene("set.json", hanging_cloth());
   Result r = drapelab("run " + scene.string() + " --out /tmp/unused --set cloth.spacing=-0.1");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find(scene.string() + ": cloth.spacing: must be positive"), std::string::npos) << r.err;
+  // The value came from --set: the error names the argument (the scene's own would name the scene).
+  EXPECT_NE(r.err.find("--set cloth.spacing=-0.1: cloth.spacing: must be positive"), std::string::npos)
+      << r.err;
   r = drapelab("run " + scene.string() + " --out /tmp/unused --set integrator.name=euler-forward");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("integrator.name: unknown integrator 'euler-forward'"), std::string::npos) << r.err;
   // The scene's integrator is leapfrog: a key only ARKODE reads is refused, not ignored.
   r = drapelab("run " + scene.string() + " --out /tmp/unused --set integrator.rtol=1e-3");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find(scene.string() + ": integrator.rtol: not used by this run of 'leapfrog'"),
+  EXPECT_NE(r.err.find("--set integrator.rtol=1e-3: integrator.rtol: not used by this run of 'leapfrog'"),
             std::string::npos)
       << r.err;
   r = drapelab("run " + scene.string() +
@@ -113,8 +115,8 @@ TEST(DrapelabRun, SetOverridesAreValidatedLikeTheFile) {
   r = drapelab("run " + scene.string() +
                " --out /tmp/unused --set integrator.name=arkode-dirk --set integrator.nonlinear_solver=bfgs");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find(scene.string() +
-                       ": integrator.nonlinear_solver: unknown nonlinear solver 'bfgs'"),
+  EXPECT_NE(r.err.find("--set integrator.nonlinear_solver=bfgs: integrator.nonlinear_solver: "
+                       "unknown nonlinear solver 'bfgs'"),
             std::string::npos)
       << r.err;
 }
@@ -216,16 +218,16 @@ TEST(DrapelabHarden, HugeAndNonIntegerValuesExitWithTwoNamingTheField) {
   const struct {
     std::string set, message;
   } cases[] = {
-      {"cloth.k_structural=1e308", "huge.json: cloth.k_structural: must be at most"},
-      {"cloth.spacing=1e308", "huge.json: cloth.spacing: must be at most 1000.0"},
-      {"'pins=[[4294967296,0]]'", "huge.json: pins[0]: [4294967296, 0] is off the 6 x 6 grid"},
-      {"integrator.max_steps=0.5", "huge.json: integrator.max_steps: expected an integer, got 0.5"},
-      {"integrator.max_steps=1e300", "huge.json: integrator.max_steps: must be an integer from 1"},
-      {"cloth.rows=46341 --set cloth.cols=46341", "huge.json: cloth.cols: rows x cols = 2147488281"},
-      {"cloth.rows=4294967297", "huge.json: cloth.rows: must be an integer from 1 to 4000000"},
-      {"cloth.rows=20000 --set cloth.cols=20000", "huge.json: cloth.cols: rows x cols = 400000000"},
-      {"integrator.dt=1e-300", "huge.json: integrator.dt: too small to advance time"},
-      {"output.energy_interval=1e-300", "huge.json: output.energy_interval: too small to advance"},
+      {"cloth.k_structural=1e308", "--set cloth.k_structural=1e308: cloth.k_structural: must be at most"},
+      {"cloth.spacing=1e308", "--set cloth.spacing=1e308: cloth.spacing: must be at most 1000.0"},
+      {"'pins=[[4294967296,0]]'", "--set pins=[[4294967296,0]]: pins[0]: [4294967296, 0] is off the 6 x 6 grid"},
+      {"integrator.max_steps=0.5", "--set integrator.max_steps=0.5: integrator.max_steps: expected an integer, got 0.5"},
+      {"integrator.max_steps=1e300", "--set integrator.max_steps=1e300: integrator.max_steps: must be an integer from 1"},
+      {"cloth.rows=46341 --set cloth.cols=46341", "--set cloth.cols=46341: cloth.cols: rows x cols = 2147488281"},
+      {"cloth.rows=4294967297", "--set cloth.rows=4294967297: cloth.rows: must be an integer from 1 to 4000000"},
+      {"cloth.rows=20000 --set cloth.cols=20000", "--set cloth.cols=20000: cloth.cols: rows x cols = 400000000"},
+      {"integrator.dt=1e-300", "--set integrator.dt=1e-300: integrator.dt: too small to advance time"},
+      {"output.energy_interval=1e-300", "--set output.energy_interval=1e-300: output.energy_interval: too small to advance"},
   };
   for (const auto& c : cases) {
     const fs::path out = fresh_dir("run_huge");
@@ -298,6 +300,47 @@ TEST(DrapelabHarden, AReusedFolderNeedsOverwriteWhichClearsTheOldRun) {
   EXPECT_EQ(nlohmann::json::parse(read_text(out / "summary.json"))["status"], "diverged");
   EXPECT_FALSE(fs::exists(out / "state.csv"));
   EXPECT_TRUE(fs::exists(out / "notes.txt")) << "only run files are cleared";
+}
+
+TEST(DrapelabHarden, AnErrorInASetValueNamesTheArgumentNotTheScene) {
+  const std::string scene = write_scene("set_blame.json", hanging_cloth()).string();
+  const fs::path out = fresh_dir("run_set_blame");
+  Result r = drapelab("run " + scene + " --out " + out.string() + " --set nosuch=1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("drapelab: error: --set nosuch=1: nosuch: unknown key"), std::string::npos)
+      << r.err;
+  r = drapelab("run " + scene + " --out " + out.string() + " --set integrator.name=rk99");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--set integrator.name=rk99: integrator.name: unknown integrator 'rk99'"),
+            std::string::npos)
+      << r.err;
+  // Among several, the --set that gave the failing value.
+  r = drapelab("run " + scene + " --out " + out.string() + " --set duration=-1 --set cloth.rows=6");
+  EXPECT_NE(r.err.find("--set duration=-1: duration: must not be negative"), std::string::npos)
+      << r.err;
+}
+
+TEST(DrapelabHarden, AFailedWriteStopsTheRunWithExitFour) {
+  // A file size limit stands in for a full disk: past it every write fails (EFBIG), once the
+  // signal it sends is ignored, as a full disk sends none. Before, the run went on writing
+  // nothing and ended with exit 1 at summary.json.
+  const fs::path out = fresh_dir("run_full");
+  nlohmann::json scene = hanging_cloth();
+  scene["output"]["energy_interval"] = 0;  // a row every step: 2000 rows, about 200 kB
+  scene["duration"] = 2.0;
+  const fs::path err = fs::path(::testing::TempDir()) / "run_full_stderr.txt";
+  const std::string cmd = "sh -c 'trap \"\" XFSZ; ulimit -f 64; exec " + std::string(DRAPELAB_EXE) +
+                          " run " + write_scene("full.json", scene).string() + " --out " +
+                          out.string() + "' 2> " + err.string() + " > /dev/null";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 4);
+  const std::string message = read_text(err);
+  EXPECT_NE(message.find("drapelab: error: cannot write " + (out / "energy.csv").string() +
+                         ": File too large"),
+            std::string::npos)
+      << message;
+  EXPECT_FALSE(fs::exists(out / "summary.json")) << "the folder must not look complete";
 }
 
 TEST(Readme, TestCommandIsWhatCiRuns) {

@@ -62,6 +62,8 @@ TEST(RunFolder, AFileOrAnUnwritablePlaceIsRefused) {
   }
   EXPECT_EQ(check("/proc/drapelab_out", false).rfind("/proc/drapelab_out: --out: cannot be created", 0),
             0u);
+  // `--out ""`: a folder of no name was "<input>: --out: cannot be created:  is not a folder".
+  EXPECT_EQ(check("", true), "--out: is empty: name the output folder");
 }
 
 TEST(RunFolder, ClearingRemovesOnlyRunFiles) {

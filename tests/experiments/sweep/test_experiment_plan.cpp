@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <set>
 
+#include "experiments/sweep/plan_size.hpp"
 #include "tests/experiments/sweep/experiment_fixtures.hpp"
 
 namespace {
@@ -191,6 +192,41 @@ TEST(ExperimentFile, ErrorsNameTheField) {
   json bad_bisect = two_by_three();
   bad_bisect["bisect"] = json::parse(R"({"low": 0.01, "high": 0.001})");
   EXPECT_EQ(error_field(bad_bisect, dir), "bisect.high");
+  json other_grid = two_by_three();
+  other_grid["reference"] = json::parse(R"({"integrator.dt": 0.0001, "cloth.rows": 5})");
+  EXPECT_EQ(error_field(other_grid, dir), "reference.cloth.rows");
+  other_grid["reference"] = json::parse(R"({"cloth": {"rows": 5}})");
+  EXPECT_EQ(error_field(other_grid, dir), "reference.cloth");
+}
+
+TEST(ExperimentFile, APlanBeyondTheLimitIsRefusedFromItsCounts) {
+  const fs::path dir = temp_dir("plan_size");
+  write_scene(dir);
+  // 9 keys x 10 values: 10^9 runs, refused before any is expanded (this returns at once).
+  json huge = two_by_three();
+  huge["sweep"] = json::object();
+  for (int k = 0; k < 9; ++k)
+    huge["sweep"]["key" + std::to_string(k) + ".x"] = json::array({0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
+  try {
+    parse(huge, dir);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "sweep");
+    EXPECT_NE(std::string(e.what()).find("1000000000 runs, more than the limit 100000"),
+              std::string::npos) << e.what();
+  }
+  json repeats = two_by_three();
+  repeats.erase("sweep");
+  repeats["repeats"] = 100001;
+  EXPECT_EQ(error_field(repeats, dir), "repeats");
+  repeats["repeats"] = 100000;  // the limit itself is a plan
+  EXPECT_DOUBLE_EQ(drape::plan_size_bound(parse(repeats, dir)), 100000.0);
+  // A reference run per run can double the plan: 6 x 2 x 10000 is over the limit.
+  json with_reference = two_by_three();
+  with_reference["repeats"] = 10000;
+  EXPECT_DOUBLE_EQ(drape::plan_size_bound(parse(with_reference, dir)), 60000.0);
+  with_reference["reference"] = json::parse(R"({"integrator.dt": 0.0001})");
+  EXPECT_EQ(error_field(with_reference, dir), "repeats");
 }
 
 }  // namespace

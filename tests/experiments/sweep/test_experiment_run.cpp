@@ -7,6 +7,7 @@
 
 #include "experiments/sweep/experiment_runner.hpp"
 #include "tests/experiments/sweep/experiment_fixtures.hpp"
+#include "tests/support/test_support.hpp"
 
 namespace {
 
@@ -19,8 +20,29 @@ TEST(ExperimentRun, BadOverridesStopBeforeAnyRun) {
   source["sweep"]["integrator.name"] = json::array({"leapfrog", "runge-kutta-9"});
   drape::ExperimentOptions options;
   options.out_dir = dir / "out";
-  EXPECT_THROW(drape::run_experiment(parse(source, dir), options), InputError);
+  const std::string exp = (dir / "exp.json").string();
+  auto error = [&](const json& definition) {
+    return drape::testing::input_error_message(
+        [&] { drape::run_experiment(parse(definition, dir), options); });
+  };
+  // The value came from the experiment, so the error names its field there, not the scene's.
+  EXPECT_EQ(error(source), exp + ": sweep.integrator.name: unknown integrator 'runge-kutta-9' "
+                                 "(see `drapelab integrators`) (in cloth.json)");
   EXPECT_FALSE(fs::exists(dir / "out" / "results.json"));
+  json unknown = two_by_three();
+  unknown["sweep"]["cloth.nope"] = json::array({1});
+  EXPECT_EQ(error(unknown), exp + ": sweep.cloth.nope: unknown key (in cloth.json)");
+  json bad_case = two_by_three();
+  bad_case["sweep"].erase("integrator.dt");
+  bad_case["cases"] = json::parse(R"([{"integrator.dt": 0.001}, {"integrator.dt": -1}])");
+  EXPECT_EQ(error(bad_case), exp + ": cases[1].integrator.dt: must be positive, got -1.0 (in cloth.json)");
+  json bad_set = two_by_three();
+  bad_set["set"] = json::parse(R"({"pins": [[0, 0, 1]]})");
+  EXPECT_EQ(error(bad_set), exp + ": set.pins[0]: expected [row, col] integers, got [0, 0, 1] (in cloth.json)");
+  json bad_probe = two_by_three();
+  bad_probe["sweep"].erase("integrator.dt");
+  bad_probe["bisect"] = json::parse(R"({"parameter": "cloth.nope", "low": 0.001, "high": 0.01})");
+  EXPECT_EQ(error(bad_probe), exp + ": bisect.parameter: unknown key (in cloth.json)");
 }
 
 TEST(ExperimentRun, WritesTablesResumesAndMergesShardsToTheSameResults) {

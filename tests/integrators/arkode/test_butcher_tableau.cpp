@@ -49,6 +49,22 @@ TEST(ButcherTableau, InconsistentTablesNameTheirField) {
   t = backward_euler;
   t["p"] = 1;
   EXPECT_NE(error_of(t).find("integrator.table.p"), std::string::npos) << error_of(t);
+  // No implicit stage: ARKODE refused it only when the run started.
+  t = {{"c", {0.0, 0.0}}, {"A", {{0.0, 0.0}, {0.0, 0.0}}}, {"b", {0.5, 0.5}}};
+  EXPECT_EQ(error_of(t), "scene.json: integrator.table.A: has only zeros on its diagonal: that is "
+                         "an explicit method, and arkode-dirk needs at least one implicit stage");
+  // An explicit first stage (ESDIRK) is diagonally implicit.
+  t = {{"c", {0.0, 1.0}}, {"A", {{0.0, 0.0}, {0.5, 0.5}}}, {"b", {0.5, 0.5}}};
+  EXPECT_EQ(error_of(t), "no error");
+  // Coefficients are bounded before any sum is formed.
+  t = {{"c", {1e300, -1e300}}, {"A", {{1e300, 0.0}, {-2e300, 1e300}}}, {"b", {0.5, 0.5}}};
+  EXPECT_EQ(error_of(t), "scene.json: integrator.table.c: must be within +-1000.0");
+  t = implicit_midpoint;
+  t["A"] = {{1e300}};
+  EXPECT_EQ(error_of(t), "scene.json: integrator.table.A: must be within +-1000.0");
+  t = implicit_midpoint;
+  t["d"] = {-1e300};
+  EXPECT_EQ(error_of(t), "scene.json: integrator.table.d: must be within +-1000.0");
   // The consistency tolerance, 1e-10: a published table's last digits pass, a wrong digit not.
   t = implicit_midpoint;
   t["c"] = {0.5 + 5e-11};

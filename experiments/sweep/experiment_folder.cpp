@@ -1,0 +1,53 @@
+#include "experiments/sweep/experiment_folder.hpp"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "core/scene/input_error.hpp"
+#include "experiments/run/run_folder.hpp"
+
+namespace drape {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// experiment.json first: clearing removes the mark of an experiment folder before the rest.
+const std::vector<std::string>& experiment_file_names() {
+  static const std::vector<std::string> names = {
+      "experiment.json", "results.csv", "results.json", "summary.csv", "metrics.csv",
+      "metrics.json",    "runs",        "shards",       "report"};
+  return names;
+}
+
+// The name in an experiment.json; "" when it has none or cannot be read.
+std::string experiment_name(const fs::path& header) {
+  std::ifstream in(header);
+  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
+  if (!doc.is_object() || !doc.contains("name") || !doc["name"].is_string()) return "";
+  return doc["name"].get<std::string>();
+}
+
+}  // namespace
+
+void check_experiment_folder(const fs::path& dir, const std::string& name, bool overwrite) {
+  check_run_folder(dir, overwrite);  // a file, an uncreatable folder, a run's files
+  const fs::path header = dir / "experiment.json";
+  std::error_code ec;
+  if (overwrite || !fs::exists(fs::symlink_status(header, ec))) return;
+  const std::string other = experiment_name(header);
+  if (other == name) return;
+  throw InputError(dir.string(), "--out",
+                   "holds the files of another experiment (experiment.json names '" + other +
+                       "', not '" + name +
+                       "'); pass --overwrite to replace them, or choose another folder");
+}
+
+void clear_experiment_folder(const fs::path& dir) {
+  fs::create_directories(dir);
+  for (const auto& name : experiment_file_names()) fs::remove_all(dir / name);
+  clear_run_folder(dir);
+}
+
+}  // namespace drape

@@ -1,0 +1,20 @@
+#pragma once
+// The output folder of an experiment (docs/experiments.md, What it writes): the checks
+// `drapelab experiment --out` makes before anything is run, and the clearing `--overwrite` asks
+// for, so that a folder never mixes a run's or another experiment's files with this one's.
+#include <filesystem>
+#include <string>
+
+namespace drape {
+
+/// Throws InputError naming `dir` and --out when it cannot take the experiment `name`: it is a
+/// file, cannot be created (check_run_folder), or holds a run's files or another experiment's
+/// (experiment.json with another name) and `overwrite` is false. The same experiment's folder
+/// is accepted: rerunning resumes it. Changes nothing.
+void check_experiment_folder(const std::filesystem::path& dir, const std::string& name,
+                             bool overwrite);
+/// Removes what a run and an experiment write at the top of `dir` (nothing else), experiment.json
+/// first: the start of `--overwrite`.
+void clear_experiment_folder(const std::filesystem::path& dir);
+
+}  // namespace drape

@@ -1,0 +1,61 @@
+// The output folder of an experiment: what --out refuses, what it resumes, and what --overwrite
+// clears (docs/experiments.md, What it writes).
+#include "experiments/sweep/experiment_folder.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tests/experiments/sweep/experiment_fixtures.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace {
+
+using namespace drape::experiment_fixtures;
+using drape::testing::input_error_message;
+
+std::string refusal(const fs::path& dir, bool overwrite = false) {
+  return input_error_message([&] { drape::check_experiment_folder(dir, "small", overwrite); });
+}
+
+TEST(ExperimentFolder, AFileOrAFolderThatCannotBeCreatedIsRefused) {
+  const fs::path dir = temp_dir("folder_file");
+  std::ofstream(dir / "a_file") << "x";
+  EXPECT_EQ(refusal(dir / "a_file"), (dir / "a_file").string() + ": --out: exists and is not a folder");
+  EXPECT_EQ(refusal(dir / "a_file" / "x"), (dir / "a_file" / "x").string() +
+                                               ": --out: cannot be created: " +
+                                               (dir / "a_file").string() + " is not a folder");
+  EXPECT_EQ(refusal(dir / "new" / "deeper"), "no error");
+  EXPECT_FALSE(fs::exists(dir / "new")) << "the check changes nothing";
+}
+
+TEST(ExperimentFolder, ARunsOrAnotherExperimentsFolderIsRefusedWithoutOverwrite) {
+  const fs::path dir = temp_dir("folder_other");
+  std::ofstream(dir / "summary.json") << "{}";
+  EXPECT_EQ(refusal(dir).find(dir.string() + ": --out: holds another run's files (summary.json)"),
+            0u) << refusal(dir);
+  EXPECT_EQ(refusal(dir, true), "no error");
+  fs::remove(dir / "summary.json");
+  std::ofstream(dir / "experiment.json") << R"({"name": "good", "plan": []})";
+  EXPECT_EQ(refusal(dir), dir.string() +
+                              ": --out: holds the files of another experiment (experiment.json "
+                              "names 'good', not 'small'); pass --overwrite to replace them, or "
+                              "choose another folder");
+  EXPECT_EQ(refusal(dir, true), "no error");
+  // The same experiment resumes.
+  std::ofstream(dir / "experiment.json") << R"({"name": "small", "plan": []})";
+  EXPECT_EQ(refusal(dir), "no error");
+}
+
+TEST(ExperimentFolder, OverwriteClearsOnlyRunAndExperimentFiles) {
+  const fs::path dir = temp_dir("folder_clear");
+  fs::create_directories(dir / "runs" / "a");
+  fs::create_directories(dir / "report");
+  for (const char* name : {"experiment.json", "results.csv", "results.json", "summary.json",
+                           "energy.csv", "notes.txt"})
+    std::ofstream(dir / name) << "x";
+  drape::clear_experiment_folder(dir);
+  std::vector<std::string> left;
+  for (const auto& entry : fs::directory_iterator(dir)) left.push_back(entry.path().filename());
+  EXPECT_EQ(left, std::vector<std::string>{"notes.txt"});
+}
+
+}  // namespace
