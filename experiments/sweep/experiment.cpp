@@ -4,9 +4,6 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
-#include <cctype>
-#include <cmath>
-#include <cstdint>
 #include <set>
 #include <tuple>
 #include <utility>
@@ -141,78 +138,13 @@ void add_ensemble_defaults(const JsonReader& in, Experiment& e) {
   if (seeded) throw in.error("repeats", "the repeats set perturbation.seed: do not set it too");
 }
 
-std::uint64_t fnv1a(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (const unsigned char ch : text) {
-    h ^= ch;
-    h *= 1099511628211ULL;
-  }
-  return h;
-}
-
-std::string slug_part(const nlohmann::json& value) {
-  std::string text = value.is_string() ? value.get<std::string>() : value.dump();
-  for (char& ch : text)
-    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '-' || ch == '+'))
-      ch = '_';
-  return text;
-}
-
-void append_run(std::vector<RunSpec>& plan, std::set<std::string>& ids, RunSpec run) {
-  run.id = run_id(run);
-  if (!ids.insert(run.id).second) return;  // a reference shared by several runs
-  run.index = static_cast<int>(plan.size());
-  plan.push_back(std::move(run));
-}
-
 }  // namespace
-
-std::vector<std::string> RunSpec::assignments() const {
-  std::vector<std::string> out;
-  for (const auto& [key, value] : overrides) out.push_back(key + "=" + value.dump());
-  return out;
-}
-
-nlohmann::json RunSpec::to_json() const {
-  nlohmann::json params = nlohmann::json::object();
-  for (const auto& [key, value] : parameters) params[key] = value;
-  nlohmann::json j = {{"id", id},
-                      {"index", index},
-                      {"scene", scene},
-                      {"parameters", params},
-                      {"overrides", assignments()},
-                      {"reference", reference},
-                      {"is_reference", is_reference}};
-  if (bisect) {
-    j["bisect"] = {{"parameter", bisect->parameter}, {"low", bisect->low},
-                   {"high", bisect->high}, {"steps", bisect->steps}};
-    if (bisect->max_drift) j["bisect"]["max_drift"] = *bisect->max_drift;
-    if (bisect->max_rise) j["bisect"]["max_rise"] = *bisect->max_rise;
-  }
-  return j;
-}
-
-std::string Shard::tag() const { return fmt::format("{}-of-{}", index, count); }
 
 const std::vector<std::string>& known_metrics() {
   static const std::vector<std::string> names = {"energy_drift", "vibration",   "attach_error",
                                                  "mapping_error", "work_precision", "stable_dt",
                                                  "restart_error", "snapshots"};
   return names;
-}
-
-std::string run_id(const RunSpec& run) {
-  nlohmann::json identity = run.to_json();
-  // The id must not depend on where the run sits in the plan, nor on itself.
-  identity.erase("id");
-  identity.erase("index");
-  identity.erase("reference");
-  std::string slug = std::filesystem::path(run.scene).stem().string();
-  if (run.is_reference) slug += "-reference";
-  if (run.bisect) slug += "-bisect";
-  for (const auto& [key, value] : run.parameters) slug += "-" + slug_part(value);
-  if (slug.size() > 72) slug.resize(72);
-  return fmt::format("{}-{:08x}", slug, fnv1a(identity.dump()) & 0xffffffffULL);
 }
 
 Experiment parse_experiment(const nlohmann::json& source, const std::string& file,
@@ -301,99 +233,6 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
 
 Experiment load_experiment(const std::string& file) {
   return parse_experiment(read_json_file(file), file, std::filesystem::path(file).parent_path());
-}
-
-namespace {
-
-// Adds a run and, when the experiment has one, its reference run.
-void plan_run(const Experiment& e, RunSpec run, std::vector<RunSpec>& plan,
-              std::set<std::string>& ids, std::vector<RunSpec>& references) {
-  if (!e.reference.empty()) {
-    // The reference shares the scene and every non-integrator value, solved with the
-    // reference's method, so that the difference is the integrator's error alone.
-    RunSpec ref;
-    ref.scene = run.scene;
-    ref.scene_path = run.scene_path;
-    ref.is_reference = true;
-    for (const auto& p : run.parameters)
-      if (p.first.rfind("integrator.", 0) != 0) ref.parameters.push_back(p);
-    ref.parameters.insert(ref.parameters.end(), e.reference.begin(), e.reference.end());
-    ref.overrides = e.set;
-    ref.overrides.insert(ref.overrides.end(), ref.parameters.begin(), ref.parameters.end());
-    ref.id = run_id(ref);
-    run.reference = ref.id;
-    // The restart error's reference is the reference run's integrator, as its scene reads it
-    // (scene.md, restart_error); its horizons are checked with the run's scene.
-    if (!e.restart_horizons.empty()) {
-      const Scene ref_scene = load_scene(ref.scene_path.string(), ref.assignments());
-      run.overrides.emplace_back("restart_error",
-                                 nlohmann::json{{"reference", ref_scene.integrator},
-                                                {"horizons", e.restart_horizons}});
-    }
-    references.push_back(std::move(ref));
-  }
-  append_run(plan, ids, std::move(run));
-}
-
-}  // namespace
-
-std::vector<RunSpec> expand_runs(const Experiment& e) {
-  // Every combination of the swept values, the first key varying slowest.
-  std::vector<std::vector<Override>> combos = {{}};
-  for (const auto& [key, values] : e.sweep) {
-    std::vector<std::vector<Override>> next;
-    for (const auto& combo : combos)
-      for (const auto& value : values) {
-        next.push_back(combo);
-        next.back().emplace_back(key, value);
-      }
-    combos = std::move(next);
-  }
-  const std::vector<std::vector<Override>> cases =
-      e.cases.empty() ? std::vector<std::vector<Override>>{{}} : e.cases;
-
-  std::vector<RunSpec> plan;
-  std::vector<RunSpec> references;
-  std::set<std::string> ids;
-  for (std::size_t s = 0; s < e.scenes.size(); ++s)
-    for (const auto& one_case : cases)
-      for (const auto& combo : combos) {
-        RunSpec run;
-        run.scene = e.scenes[s];
-        run.scene_path = e.scene_paths[s];
-        run.parameters = one_case;
-        run.parameters.insert(run.parameters.end(), combo.begin(), combo.end());
-        run.overrides = e.set;
-        run.overrides.insert(run.overrides.end(), run.parameters.begin(), run.parameters.end());
-        run.bisect = e.bisect;
-        if (e.repeats == 0) plan_run(e, std::move(run), plan, ids, references);
-        // An ensemble: the repeats of one group differ only in their perturbation seed.
-        for (int r = 1; r <= e.repeats; ++r) {
-          RunSpec repeat = run;
-          repeat.parameters.emplace_back(repeat_parameter, r);
-          repeat.overrides.emplace_back(repeat_parameter, r);
-          plan_run(e, std::move(repeat), plan, ids, references);
-        }
-      }
-  for (auto& ref : references) append_run(plan, ids, std::move(ref));
-  return plan;
-}
-
-Shard parse_shard(const std::string& text) {
-  const auto slash = text.find('/');
-  int k = 0, n = 0;
-  try {
-    std::size_t used_k = 0, used_n = 0;
-    if (slash == std::string::npos) throw std::invalid_argument("no slash");
-    k = std::stoi(text.substr(0, slash), &used_k);
-    n = std::stoi(text.substr(slash + 1), &used_n);
-    if (used_k != slash || used_n != text.size() - slash - 1) throw std::invalid_argument("junk");
-  } catch (const std::exception&) {
-    throw InputError("--shard", "", "expected K/N with 1 <= K <= N, got '" + text + "'");
-  }
-  if (n < 1 || k < 1 || k > n)
-    throw InputError("--shard", "", "expected K/N with 1 <= K <= N, got '" + text + "'");
-  return {k, n};
 }
 
 }  // namespace drape
