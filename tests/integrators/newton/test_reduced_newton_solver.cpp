@@ -27,7 +27,8 @@ Eigen::MatrixXd dense_newton_matrix(const ClothSystem& s, const Eigen::VectorXd&
 }
 
 TEST(ReducedNewtonSolver, MatchesADenseSolveOfTheFullSystem) {
-  for (const ForceSplit split : {ForceSplit::all, ForceSplit::springs}) {
+  for (const ForceSplit split : {ForceSplit::all, ForceSplit::springs, ForceSplit::non_springs,
+                                 ForceSplit::springs_and_collision}) {
     for (const ReducedSolve method : {ReducedSolve::conjugate_gradients, ReducedSolve::multigrid_cg,
                                       ReducedSolve::sparse_ldlt}) {
       auto s = testing::pinned_test_cloth(0.05, 0.01);
