@@ -22,18 +22,25 @@
 
 namespace {
 
-// The scene with the --set overrides, and the run's outcome; an error in a value a --set gave
-// names that argument, not the scene file it was applied to.
-drape::RunOutcome run_with_overrides(const std::string& scene_file, const std::string& out_dir,
-                                     const std::vector<std::string>& overrides) {
+// Calls `use` with the scene and its --set overrides; an error in a value a --set gave names that
+// argument, not the scene file it was applied to.
+template <class Use>
+auto with_overrides(const std::string& scene_file, const std::vector<std::string>& overrides,
+                    Use use) {
   try {
-    return drape::run_scene(drape::load_scene(scene_file, overrides), out_dir);
+    return use(drape::load_scene(scene_file, overrides));
   } catch (const drape::InputError& e) {
     const auto k = e.file() == scene_file ? drape::override_holding(overrides, e.field())
                                           : std::nullopt;
     if (!k) throw;
     throw drape::InputError("--set " + drape::shorten(overrides[*k]), e.field(), e.message());
   }
+}
+
+drape::RunOutcome run_with_overrides(const std::string& scene_file, const std::string& out_dir,
+                                     const std::vector<std::string>& overrides) {
+  return with_overrides(scene_file, overrides,
+                        [&](const drape::Scene& scene) { return drape::run_scene(scene, out_dir); });
 }
 
 int run_command(const std::string& scene_file, const std::string& out_dir,
@@ -82,9 +89,18 @@ int main(int argc, char** argv) {
   auto* table_option = integrators->add_option("--table", dirk_table,
                           "print this arkode-dirk table's coefficients as the inline JSON "
                           "tableau integrator.table accepts");
+  std::string stability_scene;
+  std::vector<std::string> stability_overrides;
+  auto* stability_option = integrators->add_option(
+      "--stability", stability_scene,
+      "print the explicit steps' stability limit on this scene's cloth at its start: the fastest "
+      "mode's frequency and damping rate (docs/model.md, \"Stability limit\")");
+  integrators->add_option("--set", stability_overrides,
+                          "with --stability: override a scene value (key.path=value)");
   integrators->footer(
       "Examples:\n  drapelab integrators\n"
-      "  drapelab integrators --table ARKODE_KVAERNO_4_2_3 > kvaerno.json");
+      "  drapelab integrators --table ARKODE_KVAERNO_4_2_3 > kvaerno.json\n"
+      "  drapelab integrators --stability experiments/scenes/drape_dress_form.json");
   bool fabrics_json = false;
   auto* fabrics = app.add_subcommand("fabrics", "list fabric presets and their published sources");
   fabrics->add_flag("--json", fabrics_json, "print a JSON list");
@@ -128,6 +144,8 @@ int main(int argc, char** argv) {
     if (const int code = experiment_commands.dispatch(); code >= 0) return code;
     if (integrators->parsed() && table_option->count() > 0)
       return drape::print_dirk_table(dirk_table);
+    if (integrators->parsed() && stability_option->count() > 0)
+      return with_overrides(stability_scene, stability_overrides, drape::print_stability_limit);
     return drape::list_integrators();
   } catch (const drape::InputError& e) {
     std::cerr << "drapelab: error: " << e.what() << "\n";

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include "core/scene/input_error.hpp"
+#include "experiments/run/scene_simulation.hpp"
+#include "integrators/explicit/stability_limit.hpp"
 #include "integrators/arkode/arkode_tables.hpp"
 #include "integrators/arkode/butcher_tableau.hpp"
 #include "integrators/interface/registry.hpp"
@@ -36,6 +38,22 @@ int print_dirk_table(const std::string& name) {
   // every double exactly (17 significant digits), so the user table is the same method.
   fmt::print("{}\n",
              to_json(detail::to_butcher_tableau(detail::load_implicit_table(*table).get())).dump());
+  return 0;
+}
+
+int print_stability_limit(const Scene& scene) {
+  const SceneSimulation run(scene);
+  const Eigen::VectorXd& y = run.simulation().state();
+  const Eigen::Index n3 = y.size() / 2;
+  const ExplicitStabilityLimit limit =
+      explicit_stability_limit(run.system(), y.head(n3), y.tail(n3));
+  fmt::print("{}: the cloth linearised at t = 0 ({} particles)\n", scene.file, n3 / 3);
+  fmt::print("  fastest mode: omega = {:.6g} rad/s ({} power iterations)\n", limit.omega,
+             limit.iterations);
+  fmt::print("  its damping rate: c = {:.6g} /s\n", limit.damping_rate);
+  fmt::print("  leap-frog and symplectic Euler stable below dt = {:.6g} ms "
+             "(dt^2 omega^2 + 2 dt c < 4; without damping 2 / omega = {:.6g} ms)\n",
+             1e3 * limit.damped, 1e3 * limit.undamped);
   return 0;
 }
 

@@ -3,6 +3,8 @@
 // in the form `integrator.table` accepts inline (docs/integrators.md, "User tables").
 #include <string>
 
+#include "core/scene/scene.hpp"
+
 namespace drape {
 
 /// Prints the integrators and the ARKODE tables with their orders. Returns exit status 0.
@@ -11,5 +13,8 @@ int list_integrators();
 /// {"c", "A", "b", "d", "q", "p"}, to study or change it as a user table. Throws InputError
 /// (field `--table`) for a name that is not an arkode-dirk table.
 int print_dirk_table(const std::string& name);
+/// Prints the stability limit of leap-frog and symplectic Euler on `scene`'s cloth at its start
+/// (integrators/explicit/stability_limit.hpp). Returns exit status 0.
+int print_stability_limit(const Scene& scene);
 
 }  // namespace drape

@@ -1,9 +1,12 @@
 // `drapelab integrators --table`: every arkode-dirk table printed as the inline tableau that
 // `integrator.table` accepts, exactly ARKODE's coefficients, and a run with it the same run
-// as with the table's name (docs/integrators.md, "User tables").
+// as with the table's name (docs/integrators.md, "User tables"); `--stability`: the explicit
+// steps' limit on a scene (docs/model.md, "Stability limit").
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "integrators/arkode/arkode_tables.hpp"
@@ -75,6 +78,37 @@ TEST(IntegratorsCommand, NamesTheOptionForATableThatIsNotDirk) {
     EXPECT_NE(result.err.find(name), std::string::npos) << result.err;
     EXPECT_TRUE(result.out.empty()) << result.out;
   }
+}
+
+// The drape scene's cloth at rest: k = 50 N/m, c_s = 0.01 N s/m, c_air = 1e-4 N s/m, m = 6e-5 kg,
+// so c = (c_s / k) omega^2 + c_air / m and the printed limit is the positive root of
+// dt^2 omega^2 + 2 dt c = 4; a bad --set is named.
+TEST(IntegratorsCommand, PrintsTheStabilityLimitOfTheDrapeScene) {
+  const std::string scene =
+      std::string(DRAPE_SOURCE_DIR) + "/experiments/scenes/drape_dress_form.json";
+  const auto result = run_drapelab("integrators --stability " + scene);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  double omega = 0.0, c = 0.0, damped = 0.0, undamped = 0.0;
+  const auto at = [&](const std::string& key) {
+    const auto k = result.out.find(key);
+    EXPECT_NE(k, std::string::npos) << key << " in " << result.out;
+    return std::stod(result.out.substr(k + key.size()));
+  };
+  omega = at("omega = ");
+  c = at("c = ");
+  damped = at("stable below dt = ") * 1e-3;
+  undamped = at("2 / omega = ") * 1e-3;
+  EXPECT_NEAR(c, 0.01 / 50.0 * omega * omega + 1e-4 / 6e-5, 1e-5 * c);
+  EXPECT_NEAR(undamped, 2.0 / omega, 1e-5 * undamped);
+  EXPECT_NEAR(damped, (-c + std::sqrt(c * c + 4.0 * omega * omega)) / (omega * omega),
+              1e-5 * damped);
+  // Measured by bisection (docs/integrators.md, "Largest stable fixed step"): 0.591-0.604 ms.
+  EXPECT_GT(damped, 0.591e-3);
+  EXPECT_LT(damped, 0.604e-3);
+
+  const auto bad = run_drapelab("integrators --stability " + scene + " --set cloth.nope=1");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--set cloth.nope=1"), std::string::npos) << bad.err;
 }
 
 }  // namespace
