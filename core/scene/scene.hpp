@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/model/cloth.hpp"
+#include "core/scene/input_error.hpp"
 #include "core/model/cloth_system.hpp"
 #include "core/manipulations/manipulation_params.hpp"
 
@@ -77,5 +78,20 @@ Scene parse_scene(const nlohmann::json& source, const std::string& file,
                   const std::filesystem::path& base_dir);
 /// Reads a scene file, applies the overrides in order, and parses it.
 Scene load_scene(const std::string& file, const std::vector<std::string>& overrides = {});
+
+/// Calls use(load_scene(file, overrides)) for a command line's --set arguments: an InputError
+/// in a value a --set gave (while loading, or while `use` builds from the scene) names that
+/// argument, not the scene file it was applied to.
+template <class Use>
+auto with_command_line_overrides(const std::string& file,
+                                 const std::vector<std::string>& overrides, Use use) {
+  try {
+    return use(load_scene(file, overrides));
+  } catch (const InputError& e) {
+    const auto k = e.file() == file ? override_holding(overrides, e.field()) : std::nullopt;
+    if (!k) throw;
+    throw InputError("--set " + shorten(overrides[*k]), e.field(), e.message());
+  }
+}
 
 }  // namespace drape

@@ -22,25 +22,11 @@
 
 namespace {
 
-// Calls `use` with the scene and its --set overrides; an error in a value a --set gave names that
-// argument, not the scene file it was applied to.
-template <class Use>
-auto with_overrides(const std::string& scene_file, const std::vector<std::string>& overrides,
-                    Use use) {
-  try {
-    return use(drape::load_scene(scene_file, overrides));
-  } catch (const drape::InputError& e) {
-    const auto k = e.file() == scene_file ? drape::override_holding(overrides, e.field())
-                                          : std::nullopt;
-    if (!k) throw;
-    throw drape::InputError("--set " + drape::shorten(overrides[*k]), e.field(), e.message());
-  }
-}
-
 drape::RunOutcome run_with_overrides(const std::string& scene_file, const std::string& out_dir,
                                      const std::vector<std::string>& overrides) {
-  return with_overrides(scene_file, overrides,
-                        [&](const drape::Scene& scene) { return drape::run_scene(scene, out_dir); });
+  return drape::with_command_line_overrides(
+      scene_file, overrides,
+      [&](const drape::Scene& scene) { return drape::run_scene(scene, out_dir); });
 }
 
 int run_command(const std::string& scene_file, const std::string& out_dir,
@@ -145,7 +131,8 @@ int main(int argc, char** argv) {
     if (integrators->parsed() && table_option->count() > 0)
       return drape::print_dirk_table(dirk_table);
     if (integrators->parsed() && stability_option->count() > 0)
-      return with_overrides(stability_scene, stability_overrides, drape::print_stability_limit);
+      return drape::with_command_line_overrides(stability_scene, stability_overrides,
+                                                drape::print_stability_limit);
     return drape::list_integrators();
   } catch (const drape::InputError& e) {
     std::cerr << "drapelab: error: " << e.what() << "\n";

@@ -95,8 +95,11 @@ void serve_hand(httplib::Server& server, LiveSession& session) {
 int live(const LiveOptions& o) {
   if (o.port < 1 || o.port > 65535)
     throw InputError("--port", "", fmt::format("{} is not a TCP port (1-65535)", o.port));
-  const Scene scene = load_scene(o.scene_file, o.overrides);
-  LiveSession session(scene, o.out_dir, o.live_hands || o.sensor_port != 0);
+  const auto owned_session = with_command_line_overrides(
+      o.scene_file, o.overrides, [&o](const Scene& scene) {
+        return std::make_unique<LiveSession>(scene, o.out_dir, o.live_hands || o.sensor_port != 0);
+      });
+  LiveSession& session = *owned_session;
   std::unique_ptr<SensorBridge> sensor;
   if (o.sensor_port != 0)
     sensor = std::make_unique<SensorBridge>(

@@ -119,6 +119,14 @@ TEST(DrapelabRun, SetOverridesAreValidatedLikeTheFile) {
                        "unknown nonlinear solver 'bfgs'"),
             std::string::npos)
       << r.err;
+  // `live` reads its scene and --set alike (the error comes before any port is opened).
+  r = drapelab("live " + scene.string() + " --port 18765 --out " +
+               (fs::path(::testing::TempDir()) / "live_set").string() +
+               " --set integrator.rtol=1e-3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--set integrator.rtol=1e-3: integrator.rtol: not used by this run of"),
+            std::string::npos)
+      << r.err;
 }
 
 TEST(DrapelabRun, MissingFileAndBadUsageExitWithTwo) {
