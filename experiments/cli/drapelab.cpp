@@ -22,17 +22,12 @@
 
 namespace {
 
-drape::RunOutcome run_with_overrides(const std::string& scene_file, const std::string& out_dir,
-                                     const std::vector<std::string>& overrides) {
-  return drape::with_command_line_overrides(
-      scene_file, overrides,
-      [&](const drape::Scene& scene) { return drape::run_scene(scene, out_dir); });
-}
-
 int run_command(const std::string& scene_file, const std::string& out_dir,
                 const std::vector<std::string>& overrides, bool quiet, bool overwrite) {
   drape::check_run_folder(out_dir, overwrite);  // before anything is read or built
-  const drape::RunOutcome outcome = run_with_overrides(scene_file, out_dir, overrides);
+  const drape::RunOutcome outcome = drape::with_command_line_overrides(
+      scene_file, overrides,
+      [&](const drape::Scene& scene) { return drape::run_scene(scene, out_dir); });
   if (outcome.status != "ok")
     std::cerr << fmt::format("drapelab: {}: {} at t = {:.6g} s: {}\n", scene_file, outcome.status,
                              outcome.summary.value("time", 0.0), outcome.reason);

@@ -1,6 +1,7 @@
 #include "integrators/explicit/stability_limit.hpp"
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
@@ -24,28 +25,24 @@ ExplicitStabilityLimit explicit_stability_limit(const ClothSystem& system, Const
     out /= -mass;
   };
   ExplicitStabilityLimit limit;
-  double lambda = 0.0;
-  for (;;) {
+  double lambda = 0.0;  // the Rayleigh quotient u' A u, omega^2 once it settles
+  for (double previous = 0.0;; previous = lambda) {
     if (++limit.iterations > max_iterations)
       throw std::runtime_error("explicit_stability_limit: the power iteration did not settle");
     stiffness_times(u, w);
-    const double next = u.dot(w);
+    lambda = u.dot(w);
     const double norm = w.norm();
     if (norm == 0.0) break;  // no stiffness at all: no limit from the springs
     u = w / norm;
-    if (std::abs(next - lambda) <= 1e-10 * std::abs(next)) {
-      lambda = next;
-      break;
-    }
-    lambda = next;
+    if (std::abs(lambda - previous) <= 1e-10 * std::abs(lambda)) break;
   }
   system.force_jacobian_times(x, v, zero, u, w, false);
   limit.damping_rate = 0.0 - u.dot(w) / mass;  // +0, not -0, without damping
   limit.omega = std::sqrt(std::max(lambda, 0.0));
-  const double w2 = lambda, c = limit.damping_rate;
-  limit.undamped = limit.omega > 0.0 ? 2.0 / limit.omega : INFINITY;
+  const double c = limit.damping_rate, none = std::numeric_limits<double>::infinity();
+  limit.undamped = limit.omega > 0.0 ? 2.0 / limit.omega : none;
   // The positive root of h^2 omega^2 + 2 h c - 4 = 0.
-  limit.damped = w2 > 0.0 ? (-c + std::sqrt(c * c + 4.0 * w2)) / w2 : INFINITY;
+  limit.damped = lambda > 0.0 ? (-c + std::sqrt(c * c + 4.0 * lambda)) / lambda : none;
   return limit;
 }
 
