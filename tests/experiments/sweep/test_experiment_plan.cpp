@@ -192,6 +192,13 @@ TEST(ExperimentFile, ErrorsNameTheField) {
   json bad_bisect = two_by_three();
   bad_bisect["bisect"] = json::parse(R"({"low": 0.01, "high": 0.001})");
   EXPECT_EQ(error_field(bad_bisect, dir), "bisect.high");
+  for (const char* bound : {"max_drift", "max_rise"}) {
+    bad_bisect["bisect"] = json::parse(R"({"low": 0.001, "high": 0.01})");
+    bad_bisect["bisect"][bound] = -1.0;
+    EXPECT_EQ(error_field(bad_bisect, dir), std::string("bisect.") + bound);
+    bad_bisect["bisect"][bound] = "x";
+    EXPECT_EQ(error_field(bad_bisect, dir), std::string("bisect.") + bound);
+  }
   json other_grid = two_by_three();
   other_grid["reference"] = json::parse(R"({"integrator.dt": 0.0001, "cloth.rows": 5})");
   EXPECT_EQ(error_field(other_grid, dir), "reference.cloth.rows");
