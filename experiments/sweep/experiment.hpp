@@ -59,6 +59,8 @@ struct RunSpec {
 
   /// The overrides as `key=value` strings for load_scene.
   std::vector<std::string> assignments() const;
+  /// The same with the bisection's parameter set to `probe` last (a bisecting run only).
+  std::vector<std::string> assignments(double probe) const;
   /// What run.json holds: enough to tell whether a finished folder is this run.
   nlohmann::json to_json() const;
 };

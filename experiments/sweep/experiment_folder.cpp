@@ -35,7 +35,15 @@ void check_experiment_folder(const fs::path& dir, const std::string& name, bool 
   check_run_folder(dir, overwrite);  // a file, an uncreatable folder, a run's files
   const fs::path header = dir / "experiment.json";
   std::error_code ec;
-  if (overwrite || !fs::exists(fs::symlink_status(header, ec))) return;
+  if (overwrite) return;  // clear_experiment_folder removes what is in the way
+  for (const char* folder : {"runs", "shards"}) {
+    const fs::path path = dir / folder;
+    if (fs::exists(fs::symlink_status(path, ec)) && !fs::is_directory(path, ec))
+      throw InputError(dir.string(), "--out",
+                       std::string("holds a file '") + folder +
+                           "' where the experiment writes a folder; remove it or choose another folder");
+  }
+  if (!fs::exists(fs::symlink_status(header, ec))) return;
   const std::string other = experiment_name(header);
   if (other == name) return;
   throw InputError(dir.string(), "--out",

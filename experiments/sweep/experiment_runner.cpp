@@ -20,10 +20,10 @@
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "experiments/sweep/results_table.hpp"
 #include "experiments/sweep/run_progress_file.hpp"
+#include "experiments/sweep/run_validation.hpp"
 #include "experiments/sweep/deliberate_crash.hpp"
 #include "experiments/run/run_files.hpp"
 #include "experiments/run/run_scene.hpp"
-#include "integrators/interface/integrator_options.hpp"
 
 namespace drape {
 
@@ -61,12 +61,6 @@ std::optional<nlohmann::json> finished_row(const RunSpec& run, const fs::path& d
   return row;
 }
 
-std::vector<std::string> with(std::vector<std::string> assignments, const std::string& key,
-                              double value) {
-  assignments.push_back(key + "=" + nlohmann::json(value).dump());
-  return assignments;
-}
-
 // Largest stable value of one parameter, by bisection (geometric: step sizes span decades).
 nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, RunProgressFile& progress) {
   const BisectSpec& b = *run.bisect;
@@ -74,7 +68,7 @@ nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, RunProgressFi
   nlohmann::json last_stable_summary;
   double wall = 0.0;
   auto probe = [&](double value) {
-    const Scene scene = load_scene(run.scene_path.string(), with(run.assignments(), b.parameter, value));
+    const Scene scene = load_scene(run.scene_path.string(), run.assignments(value));
     // At most low, high and `steps` probes; fewer when the bracket is found wrong at once.
     progress.set_part(static_cast<int>(probes.size()), b.steps + 2);
     const RunOutcome o =
@@ -164,53 +158,6 @@ nlohmann::json ended_row(const RunSpec& run, const fs::path& dir, const ChildEnd
     // The row still reaches the results table; resume reruns the run either way.
   }
   return row;
-}
-
-// The field of the experiment (or of its cases file) that gave `run` its override of `key`:
-// an error in that value is the experiment's, not the scene's it was applied to.
-std::pair<std::string, std::string> override_origin(const Experiment& e, const RunSpec& run,
-                                                    const std::string& key) {
-  const auto sets = [&](const std::vector<Override>& list) {
-    return std::any_of(list.begin(), list.end(), [&](const Override& o) { return o.first == key; });
-  };
-  if (run.is_reference && sets(e.reference)) return {e.file, "reference." + key};
-  for (const auto& swept : e.sweep)
-    if (swept.first == key) return {e.file, "sweep." + key};
-  if (key == repeat_parameter) return {e.file, "repeats"};
-  if (key == "duration" && e.source.contains("duration")) return {e.file, "duration"};
-  if (sets(e.set)) return {e.file, "set." + key};
-  for (std::size_t c = 0; c < e.cases.size(); ++c)
-    for (const auto& [case_key, value] : e.cases[c])
-      if (case_key == key && std::find(run.parameters.begin(), run.parameters.end(),
-                                       Override(key, value)) != run.parameters.end())
-        return {e.cases_file.empty() ? e.file : e.cases_file, fmt::format("cases[{}].{}", c, key)};
-  return {e.file, key};  // restart_error, which plan_run adds
-}
-
-// Bad overrides would fail every run alike: find them before spending any time.
-void validate_runs(const Experiment& experiment, const std::vector<RunSpec>& runs) {
-  for (const RunSpec& run : runs) {
-    auto assignments = run.assignments();
-    if (run.bisect) assignments = with(assignments, run.bisect->parameter, run.bisect->low);
-    try {
-      const Scene scene = load_scene(run.scene_path.string(), assignments);
-      read_integrator_options(scene.integrator, scene.file, "integrator");
-      if (scene.restart_error.enabled())
-        read_integrator_options(scene.restart_error.reference, scene.file,
-                                "restart_error.reference");
-    } catch (const InputError& e) {
-      if (e.file() != run.scene_path.string()) throw;
-      const std::optional<std::size_t> k = override_holding(assignments, e.field());
-      if (!k) throw;
-      // The bisection's probe is the last assignment; the rest are the run's overrides.
-      const bool probe = *k >= run.overrides.size();
-      const std::string key = probe ? run.bisect->parameter : run.overrides[*k].first;
-      const auto [file, field] = probe ? std::make_pair(experiment.file, std::string("bisect.parameter"))
-                                       : override_origin(experiment, run, key);
-      throw InputError(file, field + e.field().substr(key.size()),
-                       e.message() + " (in " + run.scene + ")");
-    }
-  }
 }
 
 std::vector<std::string> parameter_keys(const std::vector<RunSpec>& plan) {

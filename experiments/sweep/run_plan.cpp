@@ -49,6 +49,12 @@ std::vector<std::string> RunSpec::assignments() const {
   return out;
 }
 
+std::vector<std::string> RunSpec::assignments(double probe) const {
+  std::vector<std::string> out = assignments();
+  out.push_back(bisect->parameter + "=" + nlohmann::json(probe).dump());
+  return out;
+}
+
 nlohmann::json RunSpec::to_json() const {
   nlohmann::json params = nlohmann::json::object();
   for (const auto& [key, value] : parameters) params[key] = value;

@@ -24,6 +24,13 @@ TEST(ExperimentFolder, AFileOrAFolderThatCannotBeCreatedIsRefused) {
                                                ": --out: cannot be created: " +
                                                (dir / "a_file").string() + " is not a folder");
   EXPECT_EQ(refusal(dir / "new" / "deeper"), "no error");
+  // A file where the experiment writes its runs folder is refused, unless --overwrite clears it.
+  fs::create_directories(dir / "with_file");
+  std::ofstream(dir / "with_file" / "runs") << "x";
+  EXPECT_EQ(refusal(dir / "with_file"), (dir / "with_file").string() +
+                                            ": --out: holds a file 'runs' where the experiment "
+                                            "writes a folder; remove it or choose another folder");
+  EXPECT_EQ(refusal(dir / "with_file", true), "no error");
   EXPECT_FALSE(fs::exists(dir / "new")) << "the check changes nothing";
 }
 

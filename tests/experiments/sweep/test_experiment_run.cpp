@@ -13,18 +13,21 @@ namespace {
 
 using namespace drape::experiment_fixtures;
 
+// The InputError message of running `definition` (exp.json in `dir`) into dir/out.
+std::string run_error(const json& definition, const fs::path& dir) {
+  drape::ExperimentOptions options;
+  options.out_dir = dir / "out";
+  return drape::testing::input_error_message(
+      [&] { drape::run_experiment(parse(definition, dir), options); });
+}
+
 TEST(ExperimentRun, BadOverridesStopBeforeAnyRun) {
   const fs::path dir = temp_dir("bad_override");
   write_scene(dir);
   json source = two_by_three();
   source["sweep"]["integrator.name"] = json::array({"leapfrog", "runge-kutta-9"});
-  drape::ExperimentOptions options;
-  options.out_dir = dir / "out";
   const std::string exp = (dir / "exp.json").string();
-  auto error = [&](const json& definition) {
-    return drape::testing::input_error_message(
-        [&] { drape::run_experiment(parse(definition, dir), options); });
-  };
+  const auto error = [&](const json& definition) { return run_error(definition, dir); };
   // The value came from the experiment, so the error names its field there, not the scene's.
   EXPECT_EQ(error(source), exp + ": sweep.integrator.name: unknown integrator 'runge-kutta-9' "
                                  "(see `drapelab integrators`) (in cloth.json)");
@@ -43,6 +46,32 @@ TEST(ExperimentRun, BadOverridesStopBeforeAnyRun) {
   bad_probe["sweep"].erase("integrator.dt");
   bad_probe["bisect"] = json::parse(R"({"parameter": "cloth.nope", "low": 0.001, "high": 0.01})");
   EXPECT_EQ(error(bad_probe), exp + ": bisect.parameter: unknown key (in cloth.json)");
+}
+
+// What a run builds before its first step (the dummy, the hand recording, the step count) is
+// built during the check too: bad values there stop the experiment, not each run.
+TEST(ExperimentRun, BadDummyInputAndStepLimitsStopBeforeAnyRun) {
+  const fs::path dir = temp_dir("bad_built");
+  write_scene(dir);
+  const std::string exp = (dir / "exp.json").string();
+  const auto error = [&](const json& definition) { return run_error(definition, dir); };
+  json dummy = two_by_three();
+  dummy["set"] = json::parse(R"({"dummy": {"builtin": "cylinderx"}})");
+  EXPECT_EQ(error(dummy), exp + ": set.dummy.builtin: unknown built-in dummy 'cylinderx' (known: "
+                                "dress-form, cylinder, sphere) (in cloth.json)");
+  json input = two_by_three();
+  input["sweep"]["input"] = json::array({json::parse(R"({"events": [], "nope": 1})")});
+  EXPECT_EQ(error(input), exp + ": sweep.input.nope: unknown key (in cloth.json)");
+  // A recording that cannot be read names the recording.
+  std::ofstream(dir / "hands.csv") << "not a recording\n";
+  json recording = two_by_three();
+  recording["set"] = json::parse(R"({"input": {"recording": "hands.csv"}})");
+  EXPECT_EQ(error(recording).find((dir / "hands.csv").string() + ": "), 0u) << error(recording);
+  json steps = two_by_three();
+  steps["sweep"]["integrator.max_steps"] = json::array({10});
+  // 0.05 s in steps of 1 ms is more than 10 steps: check_run_limits names the step.
+  EXPECT_EQ(error(steps).find(exp + ": sweep.integrator.dt: "), 0u) << error(steps);
+  EXPECT_FALSE(fs::exists(dir / "out")) << "no folder is made for an experiment that cannot run";
 }
 
 TEST(ExperimentRun, WritesTablesResumesAndMergesShardsToTheSameResults) {

@@ -1,0 +1,92 @@
+#include "experiments/sweep/run_validation.hpp"
+
+#include <algorithm>
+#include <set>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "core/dummy/dummy_sources.hpp"
+#include "core/input/input_config.hpp"
+#include "core/scene/input_error.hpp"
+#include "core/scene/scene.hpp"
+#include "experiments/run/run_limits.hpp"
+#include "experiments/sweep/ensemble_summary.hpp"
+#include "integrators/interface/integrator_options.hpp"
+
+namespace drape {
+
+namespace {
+
+// The field of the experiment (or of its cases file) that gave `run` its override of `key`:
+// an error in that value is the experiment's, not the scene's it was applied to.
+std::pair<std::string, std::string> override_origin(const Experiment& e, const RunSpec& run,
+                                                    const std::string& key) {
+  const auto sets = [&](const std::vector<Override>& list) {
+    return std::any_of(list.begin(), list.end(), [&](const Override& o) { return o.first == key; });
+  };
+  if (run.is_reference && sets(e.reference)) return {e.file, "reference." + key};
+  for (const auto& swept : e.sweep)
+    if (swept.first == key) return {e.file, "sweep." + key};
+  if (key == repeat_parameter) return {e.file, "repeats"};
+  if (key == "duration" && e.source.contains("duration")) return {e.file, "duration"};
+  if (sets(e.set)) return {e.file, "set." + key};
+  for (std::size_t c = 0; c < e.cases.size(); ++c)
+    for (const auto& [case_key, value] : e.cases[c])
+      if (case_key == key && std::find(run.parameters.begin(), run.parameters.end(),
+                                       Override(key, value)) != run.parameters.end())
+        return {e.cases_file.empty() ? e.file : e.cases_file, fmt::format("cases[{}].{}", c, key)};
+  return {e.file, key};  // restart_error, which plan_run adds
+}
+
+// What a run builds from its scene before its first step (SceneSimulation), without the
+// cloth and the integrator, which parse_scene and read_integrator_options have checked. The
+// dummy and the recording are built once per distinct object: a sweep's runs mostly share them.
+class RunInputCheck {
+ public:
+  void check(const Scene& scene) {
+    const IntegratorOptions options = read_integrator_options(scene.integrator, scene.file, "integrator");
+    check_run_limits(scene, options);
+    if (scene.restart_error.enabled())
+      read_integrator_options(scene.restart_error.reference, scene.file, "restart_error.reference");
+    if (first_time("dummy", scene.dummy, scene))
+      make_dummy(scene.dummy, scene.file, "dummy", scene.base_dir);
+    if (first_time("input", scene.input, scene))
+      load_hand_input(scene.input, scene.file, "input", scene.base_dir);
+  }
+
+ private:
+  // Relative paths inside the object resolve against the scene's folder, so it is part of the key.
+  bool first_time(const char* what, const nlohmann::json& object, const Scene& scene) {
+    if (object.is_null()) return false;
+    return m_built.insert(std::string(what) + scene.base_dir.string() + "\n" + object.dump()).second;
+  }
+
+  std::set<std::string> m_built;
+};
+
+}  // namespace
+
+void validate_runs(const Experiment& experiment, const std::vector<RunSpec>& runs) {
+  RunInputCheck inputs;
+  for (const RunSpec& run : runs) {
+    const std::vector<std::string> assignments =
+        run.bisect ? run.assignments(run.bisect->low) : run.assignments();
+    try {
+      inputs.check(load_scene(run.scene_path.string(), assignments));
+    } catch (const InputError& e) {
+      if (e.file() != run.scene_path.string()) throw;
+      const std::optional<std::size_t> k = override_holding(assignments, e.field());
+      if (!k) throw;
+      // The bisection's probe is the last assignment; the rest are the run's overrides.
+      const bool probe = *k >= run.overrides.size();
+      const std::string key = probe ? run.bisect->parameter : run.overrides[*k].first;
+      const auto [file, field] = probe ? std::make_pair(experiment.file, std::string("bisect.parameter"))
+                                       : override_origin(experiment, run, key);
+      throw InputError(file, field + e.field().substr(key.size()),
+                       e.message() + " (in " + run.scene + ")");
+    }
+  }
+}
+
+}  // namespace drape
