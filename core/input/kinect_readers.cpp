@@ -78,7 +78,7 @@ long long next_count(detail::TextLines& lines, std::string& line, const std::str
 Recording read_kinect_v2_csv(const std::string& file) {
   constexpr std::size_t field_count = 1 + 4 * joint_count;
   detail::TextLines lines(file);
-  Recording recording{file, {}};
+  Recording recording{file, {}, {}};
   std::string line;
   long long first_tick = 0;
   while (lines.next(line)) {
@@ -110,6 +110,7 @@ Recording read_kinect_v2_csv(const std::string& file) {
       if (j == kinect_hand_right) frame.right = hand_sample(joint);
     }
     recording.frames.push_back(std::move(frame));
+    recording.frame_places.push_back(lines.where());
   }
   if (recording.frames.empty()) throw InputError(file, "", "no frames");
   return recording;
@@ -117,11 +118,12 @@ Recording read_kinect_v2_csv(const std::string& file) {
 
 Recording read_ntu_skeleton(const std::string& file) {
   detail::TextLines lines(file);
-  Recording recording{file, {}};
+  Recording recording{file, {}, {}};
   std::string line;
   const long long frame_total = next_count(lines, line, "the frame count");
   std::optional<std::string> person;  // body ID of the person whose hands are read
   for (long long f = 0; f < frame_total; ++f) {
+    const int first_line = lines.number() + 1;
     HandFrame frame;
     frame.t = static_cast<double>(f) / ntu_frames_per_second;
     const long long bodies = next_count(lines, line, "the body count of frame " +
@@ -152,6 +154,10 @@ Recording read_ntu_skeleton(const std::string& file) {
       }
     }
     recording.frames.push_back(std::move(frame));
+    recording.frame_places.push_back(
+        first_line == lines.number()
+            ? lines.where()
+            : "lines " + std::to_string(first_line) + "-" + std::to_string(lines.number()));
   }
   while (lines.next(line))
     if (!detail::split_fields(line, ' ').empty())

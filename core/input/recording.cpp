@@ -88,7 +88,7 @@ RecordingFormat detect_recording_format(const std::string& file) {
 
 Recording read_drapelab_recording(const std::string& file) {
   detail::TextLines lines(file);
-  Recording recording{file, {}};
+  Recording recording{file, {}, {}};
   std::string line;
   bool header = false;
   while (lines.next(line)) {
@@ -102,6 +102,7 @@ Recording read_drapelab_recording(const std::string& file) {
     if (!recording.frames.empty())
       detail::check_time_order(recording.frames.back().t, frame.t, file, lines.where() + ".t");
     recording.frames.push_back(std::move(frame));
+    recording.frame_places.push_back(lines.where());
   }
   if (!header) throw InputError(file, "", "empty file: expected the drapelab-recording header");
   // A replay with no frames would run without hands as if nothing were wrong (as the Kinect

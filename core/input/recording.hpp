@@ -43,6 +43,9 @@ struct HandFrame {
 struct Recording {
   std::string source;
   std::vector<HandFrame> frames;
+  /// Where each frame is in the file ("line 12", "lines 30-80"), for errors found after
+  /// reading (a hand outside the scene once transformed); empty when not read from a file.
+  std::vector<std::string> frame_places;
 };
 
 /// The keys a frame may press, each bound to a manipulation (docs/manipulations.md): r release,

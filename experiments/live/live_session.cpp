@@ -253,7 +253,7 @@ void LiveSession::write_recording(nlohmann::json& scene) {
   const double end = m_run->simulation().time() + 1e-9;  // keys queued but never reached: out
   const std::filesystem::path file = std::filesystem::absolute(m_out_dir / "recording.jsonl");
   const InputConfig& config = m_run->input()->config;
-  Recording recording{file.string(), {}};
+  Recording recording{file.string(), {}, {}};
   if (m_live_hands) {
     for (HandFrame& frame : m_live_hands->recording()) {
       if (frame.t > end) frame.keys.clear();

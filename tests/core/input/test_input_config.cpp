@@ -181,9 +181,9 @@ TEST(InputConfig, ErrorsInsideTheRecordingNameItsLine) {
         parts);
   };
   error_of("{\"t\": 0}\n{\"t\": 0}\n", {"r.jsonl", "line 3.t"});
-  // Hands are checked in the scene frame, frame by frame.
+  // Hands are checked in the scene frame, frame by frame, and named by their line.
   error_of("{\"t\": 0, \"left\": [0, 1, 0]}\n{\"t\": 0.5, \"left\": [0, 11, 0]}\n",
-           {"r.jsonl: frame 2 (t = 0.5 s).left.y: 11 is not a scene coordinate within +-10 m"});
+           {"r.jsonl: line 3 (frame 2, t = 0.5 s).left.y: 11 is not a scene coordinate within +-10 m"});
 }
 
 }  // namespace

@@ -106,6 +106,7 @@ TEST(KinectV2Csv, SyntheticValuesStatesAndRelativeTimes) {
   EXPECT_EQ(r.frames[1].right->position, Vec3(0.75, 1e-3, 2.25));
   EXPECT_TRUE(r.frames[2].left->inferred);
   EXPECT_FALSE(r.frames[2].right);
+  EXPECT_EQ(r.frame_places, (std::vector<std::string>{"line 1", "line 2", "line 4"}));
 }
 
 TEST(KinectV2Csv, BadInputNamesFileAndLine) {
@@ -197,6 +198,9 @@ TEST(NtuSkeleton, SyntheticFileFollowsTheFirstPerson) {
   EXPECT_FALSE(r.frames[1].right);
   EXPECT_FALSE(r.frames[2].left || r.frames[2].right);
   EXPECT_FALSE(r.frames[3].left || r.frames[3].right);  // never another person's hands
+  // Line 1 holds the frame count; a frame is its body count and 27 lines a body.
+  EXPECT_EQ(r.frame_places,
+            (std::vector<std::string>{"lines 2-29", "lines 30-84", "line 85", "lines 86-113"}));
 }
 
 TEST(NtuSkeleton, BadInputNamesFileAndLine) {

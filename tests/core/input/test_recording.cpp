@@ -55,6 +55,7 @@ TEST(Recording, ReadsTheSpecExampleWithOmittedFields) {
                                    "\"inferred\": [\"right\"]}\n");
   const Recording r = read_recording(file);
   ASSERT_EQ(r.frames.size(), 3u);
+  EXPECT_EQ(r.frame_places, (std::vector<std::string>{"line 2", "line 4", "line 5"}));
   EXPECT_EQ(r.frames[0].t, 0.033);
   EXPECT_EQ(r.frames[0].left->position, Vec3(1, 2, 3));
   EXPECT_FALSE(r.frames[0].right);
