@@ -69,10 +69,10 @@ class ParseGuard {
   std::vector<Level> m_open;
 };
 
-// `path` inside the value found at `field`.
-std::string field_path(const std::string& field, const std::string& path) {
-  if (path.empty()) return field;
-  return field.empty() ? path : field + "." + path;
+// The error for a value the guard refused, at its `path` inside the value found at `field`.
+InputError refused(const RefusedJson& e, const std::string& file, const std::string& field) {
+  const std::string path = field.empty() ? e.path : e.path.empty() ? field : field + "." + e.path;
+  return InputError(file, path, std::string("not accepted JSON: ") + e.what());
 }
 
 template <class Source>
@@ -82,7 +82,7 @@ nlohmann::json parse_bounded(Source&& source, const std::string& file, const std
   } catch (const nlohmann::json::exception& e) {  // syntax, and numbers out of range
     throw InputError(file, field, "not valid JSON: " + shorten(e.what()));
   } catch (const RefusedJson& e) {
-    throw InputError(file, field_path(field, e.path), std::string("not accepted JSON: ") + e.what());
+    throw refused(e, file, field);
   }
 }
 
@@ -125,7 +125,7 @@ std::optional<nlohmann::json> try_parse_json_text(const std::string& text, const
   } catch (const nlohmann::json::exception&) {
     return std::nullopt;
   } catch (const RefusedJson& e) {
-    throw InputError(file, field_path(field, e.path), std::string("not accepted JSON: ") + e.what());
+    throw refused(e, file, field);
   }
 }
 
