@@ -227,12 +227,15 @@ DummySections read_sections_file(const std::string& file) {
   const int n = static_cast<int>(list.size());
   for (int k = 0; k < n; ++k) {
     JsonReader section(list[k], file, "sections[" + std::to_string(k) + "]");
-    const double y = section.number("y");
+    // The bounds of every dummy (docs/scene.md, Limits): beyond them the surface's spline and
+    // the particles' grid are built over absurd extents (1e200 m took for ever).
+    const double y = section.within("y", section.number("y"), limits::max_coordinate);
     if (k > 0 && !(y < out.y.back()))
       throw section.error("y", "must be below the previous section's (sections run top first)");
     const std::vector<double> center = section.has("center") ? section.numbers("center")
                                                              : std::vector<double>{0.0, 0.0};
     if (center.size() != 2) throw section.error("center", "expected 2 numbers [cx, cz]");
+    for (const double c : center) section.within("center", c, limits::max_coordinate);
     const std::vector<double> radii = section.numbers("radii");
     if (k == 0) {
       if (radii.size() < 3) throw section.error("radii", "expected at least 3 radii");
@@ -243,7 +246,8 @@ DummySections read_sections_file(const std::string& file) {
     }
     for (size_t j = 0; j < radii.size(); ++j) {
       if (radii[j] < 0.0) throw section.error("radii", "must not be negative");
-      out.radius(k, static_cast<Eigen::Index>(j)) = radii[j];
+      out.radius(k, static_cast<Eigen::Index>(j)) =
+          section.at_most("radii", radii[j], limits::max_length);
     }
     section.finish();
     out.y.push_back(y);

@@ -17,6 +17,7 @@
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
+#include "core/scene/scene_limits.hpp"
 
 namespace drape {
 
@@ -87,22 +88,46 @@ SliceSegments cut_triangles(const TriangleMesh& mesh, double y) {
   return out;
 }
 
-// tinyobjloader reads a coordinate it cannot parse ("nan", "inf", "1e999") as 0 without a word:
-// every vertex line is checked here first, naming its line.
-void check_vertex_lines(const std::string& file) {
+// tinyobjloader reads a coordinate it cannot parse ("nan", "inf", "1e999") as 0 and an index
+// beyond int's range as a wrapped number, without a word, and drops faces of fewer than three
+// corners: every vertex and face line is checked here first, naming its line. Coordinates are
+// bounded as a scene's are (docs/scene.md, Limits), in metres once scaled by `unit`.
+void check_lines(const std::string& file, double unit) {
   std::ifstream in(file);
   std::string line;
+  long vertices = 0;
   for (long number = 1; std::getline(in, line); ++number) {
     std::istringstream fields(line);
     std::string tag, token;
-    if (!(fields >> tag) || tag != "v") continue;
-    for (int k = 0; k < 3 && fields >> token; ++k) {
-      double x = 0.0;
-      const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), x);
-      if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(x))
-        throw InputError(file, "line " + std::to_string(number),
-                         "vertex coordinate \"" + token + "\" is not a finite number");
+    if (!(fields >> tag) || (tag != "v" && tag != "f")) continue;
+    const auto error = [&](const std::string& message) {
+      return InputError(file, "line " + std::to_string(number), message);
+    };
+    if (tag == "v") {
+      ++vertices;
+      for (int k = 0; k < 3 && fields >> token; ++k) {
+        double x = 0.0;
+        const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), x);
+        if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(x))
+          throw error("vertex coordinate \"" + token + "\" is not a finite number");
+        if (!(std::abs(unit * x) <= limits::max_coordinate))
+          throw error(fmt::format("vertex coordinate {} x unit {:g} m is beyond +-{:g} m", token,
+                                  unit, limits::max_coordinate));
+      }
+      continue;
     }
+    int corners = 0;
+    for (; fields >> token; ++corners) {
+      // v, v/vt, v//vn or v/vt/vn: the vertex is the first number, negative counting back.
+      long index = 0;
+      const std::string_view vertex(token.data(), std::min(token.find('/'), token.size()));
+      const auto [end, ec] = std::from_chars(vertex.data(), vertex.data() + vertex.size(), index);
+      if (ec != std::errc() || end != vertex.data() + vertex.size() || index == 0 ||
+          std::abs(index) > vertices)
+        throw error(fmt::format("face corner \"{}\" is not a vertex of the {} before it", token,
+                                vertices));
+    }
+    if (corners < 3) throw error(fmt::format("a face of {} corners (at least 3)", corners));
   }
 }
 
@@ -111,7 +136,7 @@ void check_vertex_lines(const std::string& file) {
 TriangleMesh read_obj_mesh(const std::string& file, double unit) {
   // A directory or a device (/dev/zero) is said to be one (docs/scene.md, Limits).
   if (const auto reason = unreadable_file_reason(file)) throw InputError(file, "", *reason);
-  check_vertex_lines(file);
+  check_lines(file, unit);
   tinyobj::ObjReaderConfig config;
   // Polygons are fanned from their first corner below rather than split along their shorter
   // diagonal by tinyobjloader: that is how the reference slicing of the built-in body split
@@ -131,8 +156,6 @@ TriangleMesh read_obj_mesh(const std::string& file, double unit) {
   const std::vector<tinyobj::real_t>& coordinates = reader.GetAttrib().vertices;
   for (size_t i = 0; i + 2 < coordinates.size(); i += 3) {
     const Vec3 v(coordinates[i], coordinates[i + 1], coordinates[i + 2]);
-    if (!v.allFinite())
-      throw InputError(file, "", fmt::format("vertex {} is not finite", i / 3 + 1));
     mesh.vertices.push_back(unit * v);
   }
   const int num_vertices = static_cast<int>(mesh.vertices.size());
@@ -142,6 +165,8 @@ TriangleMesh read_obj_mesh(const std::string& file, double unit) {
       std::vector<int> face;
       for (size_t c = first; c < first + corners; ++c) {
         const int v = shape.mesh.indices[c].vertex_index;
+        // check_lines has checked the file's indices; this guards the reads below against a
+        // reading of them by tinyobjloader that would differ.
         if (v < 0 || v >= num_vertices)
           throw InputError(file, "", fmt::format("a face refers to vertex {} of {}", v + 1,
                                                  num_vertices));

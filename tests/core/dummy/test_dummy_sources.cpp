@@ -184,6 +184,12 @@ TEST_F(SectionsFile, BadFilesNameTheSceneFieldAndTheFileField) {
                                             {"y": 1.0, "radii": [0.1, 0.1, 0.1]}]})");
   write("negative.json", R"({"sections": [{"y": 1.0, "radii": [0.1, 0.1, 0.1]},
                                          {"y": 0.5, "radii": [0.1, -0.1, 0.1]}]})");
+  write("high.json", R"({"sections": [{"y": 1e7, "radii": [0.1, 0.1, 0.1]},
+                                     {"y": 0.5, "radii": [0.1, 0.1, 0.1]}]})");
+  write("far.json", R"({"sections": [{"y": 1.0, "radii": [0.1, 0.1, 0.1], "center": [0, -2e6]},
+                                    {"y": 0.5, "radii": [0.1, 0.1, 0.1]}]})");
+  write("wide.json", R"({"sections": [{"y": 1.0, "radii": [0.1, 0.1, 0.1]},
+                                     {"y": 0.5, "radii": [0.1, 2000, 0.1]}]})");
   write("extra.json", R"({"sections": [{"y": 1.0, "radii": [0.1, 0.1, 0.1], "r": 1},
                                       {"y": 0.5, "radii": [0.1, 0.1, 0.1]}]})");
   const std::pair<const char*, const char*> cases[] = {
@@ -194,6 +200,9 @@ TEST_F(SectionsFile, BadFilesNameTheSceneFieldAndTheFileField) {
       {"upside_down.json", "sections[1].y: must be below"},
       {"negative.json", "sections[1].radii: must not be negative"},
       {"extra.json", "sections[0].r: unknown key"},
+      {"high.json", "sections[0].y: must be within +-1000000.0"},
+      {"far.json", "sections[0].center: must be within +-1000000.0"},
+      {"wide.json", "sections[1].radii: must be at most 1000.0"},
   };
   for (const auto& [name, what] : cases) {
     SCOPED_TRACE(name);

@@ -241,6 +241,11 @@ TEST_F(MeshSections, BadInputNamesTheSceneFieldAndTheMeshFile) {
   write("no_faces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
   write("nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
   write("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 1e999\nf 1 2 3\n");
+  write("far.obj", "v 0 0 0\nv 1 0 0\nv 0 1 1e8\nf 1 2 3\n");
+  write("far_km.obj", "v 0 0 0\nv 1e4 0 0\nv 0 1 0\nf 1 2 3\n");
+  write("two_corners.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\nf 1 2 3\n");
+  write("overflow.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999/1\n");
+  write("ahead.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n");
   // One vertical wall: every slice is a single segment enclosing nothing.
   write("wall.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
   // A U-shaped channel open towards +x: its area centroid lies in the hollow, and the ray from
@@ -265,7 +270,19 @@ TEST_F(MeshSections, BadInputNamesTheSceneFieldAndTheMeshFile) {
                      "nan.obj: line 3: vertex coordinate \"nan\" is not a finite number");
   expect_input_error({{"mesh", "inf.obj"}}, "dummy.mesh",
                      "inf.obj: line 3: vertex coordinate \"1e999\" is not a finite number");
-  expect_input_error({{"mesh", "bad_index.obj"}}, "dummy.mesh", "bad_index.obj: ");
+  expect_input_error({{"mesh", "bad_index.obj"}}, "dummy.mesh",
+                     "bad_index.obj: line 4: face corner \"7\" is not a vertex of the 3 before it");
+  expect_input_error({{"mesh", "overflow.obj"}}, "dummy.mesh",
+                     "overflow.obj: line 4: face corner \"99999999999/1\" is not a vertex of the 3 before it");
+  expect_input_error({{"mesh", "ahead.obj"}}, "dummy.mesh",
+                     "ahead.obj: line 3: face corner \"3\" is not a vertex of the 2 before it");
+  expect_input_error({{"mesh", "two_corners.obj"}}, "dummy.mesh",
+                     "two_corners.obj: line 4: a face of 2 corners (at least 3)");
+  // 1e8 m, and 1e4 units of 1 km: beyond the scene's +-1e6 m.
+  expect_input_error({{"mesh", "far.obj"}}, "dummy.mesh",
+                     "far.obj: line 3: vertex coordinate 1e8 x unit 1 m is beyond +-1e+06 m");
+  expect_input_error({{"mesh", "far_km.obj"}, {"unit", 1e3}}, "dummy.mesh",
+                     "far_km.obj: line 2: vertex coordinate 1e4 x unit 1000 m is beyond +-1e+06 m");
   expect_input_error({{"mesh", "wall.obj"}}, "dummy.mesh", "no surface encloses a centre");
   expect_input_error({{"mesh", "channel.obj"}, {"points", 4}}, "dummy.mesh",
                      "the ray at theta = 90 deg");
