@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <csignal>
 #include <iostream>
 
 #include "core/scene/input_error.hpp"
@@ -40,6 +41,9 @@ int run_command(const std::string& scene_file, const std::string& out_dir,
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Past a file size limit (ulimit -f) the kernel's default is to kill the process; ignored, the
+  // write fails with EFBIG instead and the run stops as a failed write, exit 4 (docs/outputs.md).
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"drapelab: a numerical testbed for virtual draping"};
   app.require_subcommand(1);
   app.set_version_flag("--version", [] { return drape::version_text(); },

@@ -73,7 +73,11 @@ void write_file_atomic(const std::filesystem::path& file, const std::string& suf
 
 void write_json(const std::filesystem::path& file, const nlohmann::json& value,
                 const std::string& suffix) {
-  write_file_atomic(file, suffix, [&](std::ostream& out) { out << value.dump(2) << "\n"; });
+  // A path given on the command line may hold bytes that are not UTF-8 (Linux allows them): they
+  // are written as U+FFFD rather than failing the write of a run that is done.
+  write_file_atomic(file, suffix, [&](std::ostream& out) {
+    out << value.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+  });
 }
 
 }  // namespace drape

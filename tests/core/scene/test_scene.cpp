@@ -187,6 +187,8 @@ TEST(Scene, OverridesCreatePathsAndParseJsonElseString) {
   EXPECT_EQ(scene["output"]["energy_interval"], 0);
   EXPECT_THROW(apply_override(scene, "novalue"), InputError);
   EXPECT_THROW(apply_override(scene, "duration.x=1"), InputError);
+  EXPECT_EQ(testing::input_error_message([&] { apply_override(scene, "description=\xff\xfe"); }),
+            "--set: description: not valid UTF-8 text");
 }
 
 TEST(Scene, FabricPresetDerivesMassAndSpringsAndFillsTheSceneAsRun) {

@@ -87,5 +87,14 @@ TEST(RunFolder, JsonIsWrittenUnderATemporaryNameThenRenamed) {
   EXPECT_EQ(nlohmann::json::parse(in)["status"], "ok");
 }
 
+TEST(RunFolder, JsonWithBytesThatAreNotUtf8IsWrittenWithReplacementCharacters) {
+  // A path from the command line may hold any bytes but 0 and '/'.
+  const fs::path dir = fresh("not_utf8");
+  fs::create_directories(dir);
+  write_json(dir / "summary.json", {{"scene", "e\xff/s.json"}});
+  std::ifstream in(dir / "summary.json");
+  EXPECT_EQ(nlohmann::json::parse(in)["scene"], "e\xef\xbf\xbd/s.json");  // U+FFFD
+}
+
 }  // namespace
 }  // namespace drape
