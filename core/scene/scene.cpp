@@ -183,8 +183,10 @@ RestartErrorOptions read_restart_error(JsonReader in, double duration) {
                                    " horizons");
   for (std::size_t k = 0; k < r.horizons.size(); ++k) {
     const std::string key = "horizons[" + std::to_string(k) + "]";
-    if (!(r.horizons[k] > 0.0) || r.horizons[k] > duration)
-      throw in.error(key, "must be in (0, duration = " + nlohmann::json(duration).dump() + " s]");
+    // A horizon below the shortest step the run may take (Limits) measures no motion.
+    if (!(r.horizons[k] >= duration * limits::min_relative_step) || r.horizons[k] > duration)
+      throw in.error(key, "must be in [duration x 2^-50, duration = " +
+                              nlohmann::json(duration).dump() + " s]");
     if (k > 0 && !(r.horizons[k] > r.horizons[k - 1]))
       throw in.error(key, "horizons must ascend");
   }

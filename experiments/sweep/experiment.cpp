@@ -11,6 +11,7 @@
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
 #include "core/scene/scene.hpp"
+#include "core/scene/scene_limits.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "experiments/sweep/plan_size.hpp"
 #include "core/scene/json_text.hpp"
@@ -95,30 +96,72 @@ BisectSpec read_bisect(JsonReader in) {
   return b;
 }
 
-// A case key that also appears in the sweep or in `set` would make the run ambiguous.
-void check_disjoint(const JsonReader& in, const Experiment& e) {
-  std::set<std::string> swept;
-  for (const auto& [key, values] : e.sweep) swept.insert(key);
-  for (const auto& [key, value] : e.set)
-    if (swept.count(key)) throw in.error("set." + key, "is also swept");
-  // A clash in a shared cases file names that file's field and the definition.
-  auto clash = [&](std::size_t c, const std::string& key, const std::string& what) {
-    const std::string field = fmt::format("cases[{}].{}", c, key);
-    if (e.cases_file.empty()) return in.error(field, what);
-    return InputError(e.cases_file, field, what + " in " + in.file());
+// Two scene paths overlap when they are equal or one holds the other (integrator and
+// integrator.dt): applied in turn, the later would replace or change the earlier's value, so
+// which one a run gets would depend on the order of application, not on the definition.
+bool overlap(const std::string& a, const std::string& b) {
+  const auto holds = [](const std::string& outer, const std::string& inner) {
+    return inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
+           inner[outer.size()] == '.';
   };
-  for (std::size_t c = 0; c < e.cases.size(); ++c)
-    for (const auto& [key, value] : e.cases[c]) {
-      if (swept.count(key)) throw clash(c, key, "is also swept");
-      for (const auto& [set_key, set_value] : e.set)
-        if (set_key == key) throw clash(c, key, "is also in set");
-    }
+  return a == b || holds(a, b) || holds(b, a);
+}
+
+// Why `key` may not be given with `other` (given in `where`), or "" when it may.
+std::string clash_of(const std::string& key, const std::string& other, const std::string& where) {
+  if (!overlap(key, other)) return "";
+  if (key == other) return where == "sweep" ? "is also swept" : "is also in " + where;
+  return "overlaps " + where + "." + other + " (one holds the other)";
+}
+
+// Every scene path of a run comes from one place: `set`, the sweep or its case.
+void check_disjoint(const JsonReader& in, const Experiment& e) {
+  const auto check = [](const std::vector<std::string>& keys, const std::vector<Override>& others,
+                        const std::string& where, const auto& error) {
+    for (const std::string& key : keys)
+      for (const auto& [other, value] : others) {
+        const std::string why = clash_of(key, other, where);
+        if (!why.empty()) throw error(key, why);
+      }
+  };
+  std::vector<Override> swept;
+  for (const auto& [key, values] : e.sweep) swept.emplace_back(key, values.front());
+  const auto keys = [](const std::vector<Override>& list) {
+    std::vector<std::string> out;
+    for (const auto& [key, value] : list) out.push_back(key);
+    return out;
+  };
+  const auto in_set = [&](const std::string& key, const std::string& why) {
+    return in.error("set." + key, why);
+  };
+  const auto in_sweep = [&](const std::string& key, const std::string& why) {
+    return in.error("sweep." + key, why);
+  };
+  check(keys(e.set), swept, "sweep", in_set);
+  for (std::size_t i = 0; i < e.set.size(); ++i)
+    check({e.set[i].first}, {e.set.begin() + static_cast<std::ptrdiff_t>(i) + 1, e.set.end()}, "set", in_set);
+  for (std::size_t i = 0; i < swept.size(); ++i)
+    check({swept[i].first}, {swept.begin() + static_cast<std::ptrdiff_t>(i) + 1, swept.end()}, "sweep", in_sweep);
+  // A clash in a shared cases file names that file's field and the definition.
+  for (std::size_t c = 0; c < e.cases.size(); ++c) {
+    const auto in_case = [&](const std::string& key, const std::string& why) {
+      const std::string field = fmt::format("cases[{}].{}", c, key);
+      if (e.cases_file.empty()) return in.error(field, why);
+      return InputError(e.cases_file, field, why + " in " + in.file());
+    };
+    const std::vector<Override>& one = e.cases[c];
+    check(keys(one), swept, "sweep", in_case);
+    check(keys(one), e.set, "set", in_case);
+    for (std::size_t i = 0; i < one.size(); ++i)
+      check({one[i].first}, {one.begin() + static_cast<std::ptrdiff_t>(i) + 1, one.end()},
+            fmt::format("cases[{}]", c), in_case);
+  }
   if (e.bisect) {
-    const std::string& p = e.bisect->parameter;
-    if (swept.count(p)) throw in.error("bisect.parameter", "'" + p + "' is also swept");
-    for (const auto& c : e.cases)
-      for (const auto& [key, value] : c)
-        if (key == p) throw in.error("bisect.parameter", "'" + p + "' is also set by a case");
+    const auto in_bisect = [&](const std::string& key, const std::string& why) {
+      return in.error("bisect.parameter", "'" + key + "' " + why);
+    };
+    check({e.bisect->parameter}, swept, "sweep", in_bisect);
+    for (const auto& one : e.cases) check({e.bisect->parameter}, one, "a case", in_bisect);
   }
 }
 
@@ -128,6 +171,16 @@ void add_ensemble_defaults(const JsonReader& in, Experiment& e) {
   auto names = [](const std::vector<Override>& list, const std::string& key) {
     return std::any_of(list.begin(), list.end(), [&](const Override& o) { return o.first == key; });
   };
+  // A whole perturbation object, applied before (set) or after (sweep, cases) the ensemble's
+  // own keys, would drop the default position or the repeat's seed without a word.
+  const std::string whole = "perturbation";
+  const std::string why = "with repeats, give perturbation.* keys one by one: a whole object "
+                          "would replace the repeats' seeds or their default position";
+  if (names(e.set, whole)) throw in.error("set.perturbation", why);
+  for (const auto& [key, values] : e.sweep)
+    if (key == whole) throw in.error("sweep.perturbation", why);
+  for (std::size_t c = 0; c < e.cases.size(); ++c)
+    if (names(e.cases[c], whole)) throw in.error(fmt::format("cases[{}].perturbation", c), why);
   bool position = names(e.set, "perturbation.position");
   for (const auto& [key, values] : e.sweep) position = position || key == "perturbation.position";
   for (const auto& c : e.cases) position = position || names(c, "perturbation.position");
@@ -193,16 +246,22 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
   if (in.has("reference")) {
     e.reference = read_overrides(in, "reference");
     if (e.reference.empty()) throw in.error("reference", "must set at least one value");
-    // The report compares every run with its reference particle by particle.
+    // A reference is another method for the same problem: the report compares every run with
+    // its reference particle by particle, over the same time, so nothing else may differ.
     for (const auto& [key, value] : e.reference)
-      if (key == "cloth" || key == "cloth.rows" || key == "cloth.cols")
-        throw in.error("reference." + key, "the reference must keep the runs' grid");
+      if (!overlap(key, "integrator") || key == "integrator.max_steps")
+        throw in.error("reference." + key,
+                       "a reference changes only the method (integrator.* keys but max_steps), "
+                       "so that it solves the runs' problem");
   }
   if (in.has("restart_error")) {
     if (e.reference.empty())
       throw in.error("restart_error", "needs a reference: the runs restart from its states");
     JsonReader restart = in.object("restart_error");
     e.restart_horizons = restart.numbers("horizons");
+    if (e.restart_horizons.empty() || e.restart_horizons.size() > limits::max_restart_horizons)
+      throw restart.error("horizons", fmt::format("expected 1 to {} horizons",
+                                                  limits::max_restart_horizons));
     restart.finish();
   }
   if (in.has("bisect")) e.bisect = read_bisect(in.object("bisect"));

@@ -65,26 +65,62 @@ class RunInputCheck {
   std::set<std::string> m_built;
 };
 
+// The assignment that gave the value at `field`, or else made the object there: the
+// experiment's `nosuch.key` makes a `nosuch` that the scene then calls an unknown key.
+std::optional<std::size_t> assignment_behind(const std::vector<std::string>& assignments,
+                                             const std::string& field) {
+  if (const auto k = override_holding(assignments, field)) return k;
+  for (std::size_t k = assignments.size(); k-- > 0;)
+    if (assignments[k].rfind(field + ".", 0) == 0) return k;
+  return std::nullopt;
+}
+
+// Whether a bisecting run's scene is good without the probe's value (the scene's own, or none).
+bool runs_without_probe(const RunSpec& run) {
+  try {
+    RunInputCheck().check(load_scene(run.scene_path.string(), run.assignments()));
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
 }  // namespace
 
 void validate_runs(const Experiment& experiment, const std::vector<RunSpec>& runs) {
   RunInputCheck inputs;
   for (const RunSpec& run : runs) {
-    const std::vector<std::string> assignments =
-        run.bisect ? run.assignments(run.bisect->low) : run.assignments();
-    try {
-      inputs.check(load_scene(run.scene_path.string(), assignments));
-    } catch (const InputError& e) {
-      if (e.file() != run.scene_path.string()) throw;
-      const std::optional<std::size_t> k = override_holding(assignments, e.field());
-      if (!k) throw;
-      // The bisection's probe is the last assignment; the rest are the run's overrides.
-      const bool probe = *k >= run.overrides.size();
-      const std::string key = probe ? run.bisect->parameter : run.overrides[*k].first;
-      const auto [file, field] = probe ? std::make_pair(experiment.file, std::string("bisect.parameter"))
-                                       : override_origin(experiment, run, key);
-      throw InputError(file, field + e.field().substr(key.size()),
-                       e.message() + " (in " + run.scene + ")");
+    // A bisection's probes span [low, high]: both ends are checked, each naming its field.
+    std::vector<std::pair<std::vector<std::string>, const char*>> variants;
+    if (run.bisect) {
+      variants.emplace_back(run.assignments(run.bisect->low), "low");
+      variants.emplace_back(run.assignments(run.bisect->high), "high");
+    } else {
+      variants.emplace_back(run.assignments(), "");
+    }
+    for (const auto& [assignments, end] : variants) {
+      try {
+        inputs.check(load_scene(run.scene_path.string(), assignments));
+      } catch (const InputError& e) {
+        if (e.file() != run.scene_path.string()) throw;
+        const std::optional<std::size_t> k = assignment_behind(assignments, e.field());
+        // The bisection's probe is the last assignment. An error in another field (rows x cols
+        // when cloth.rows is probed) is the probe's too when the run without it is good.
+        const bool probe = run.bisect && (k ? *k >= run.overrides.size() : runs_without_probe(run));
+        if (!k && !probe) throw;
+        const std::string in_scene = " (in " + run.scene + ")";
+        if (probe) {
+          throw InputError(experiment.file, "bisect",
+                           fmt::format("{} = {} (bisect.{}): {}{}{}", run.bisect->parameter,
+                                       end == std::string("low") ? run.bisect->low : run.bisect->high,
+                                       end, e.field() == run.bisect->parameter ? "" : e.field() + ": ",
+                                       e.message(), in_scene));
+        }
+        const std::string key = run.overrides[*k].first;
+        const auto [file, field] = override_origin(experiment, run, key);
+        throw InputError(file, field + e.field().substr(std::min(key.size(), e.field().size())),
+                         e.message() + in_scene);
+      }
     }
   }
 }

@@ -195,6 +195,9 @@ TEST(ReferenceRestarts, BadInputNamesTheField) {
                      "restart_error.horizons[0]");
   expect_input_error({{"reference", reference}, {"horizons", {0.5}}},
                      "restart_error.horizons[0]");
+  // Below duration x 2^-50 a horizon measures no motion.
+  expect_input_error({{"reference", reference}, {"horizons", {1e-300, 0.1}}},
+                     "restart_error.horizons[0]");
   expect_input_error({{"reference", reference}, {"horizons", {0.1}}, {"every", 2}},
                      "restart_error.every");
   expect_input_error({{"reference", {{"name", "leapfrg"}, {"dt", 1e-4}}}, {"horizons", {0.1}}},

@@ -204,6 +204,52 @@ TEST(ExperimentFile, ErrorsNameTheField) {
   EXPECT_EQ(error_field(other_grid, dir), "reference.cloth.rows");
   other_grid["reference"] = json::parse(R"({"cloth": {"rows": 5}})");
   EXPECT_EQ(error_field(other_grid, dir), "reference.cloth");
+  // A reference is a method: another duration or gravity would make its error meaningless.
+  other_grid["reference"] = json::parse(R"({"integrator.dt": 0.0001, "duration": 0.01})");
+  EXPECT_EQ(error_field(other_grid, dir), "reference.duration");
+  other_grid["reference"] = json::parse(R"({"integrator": {"name": "leapfrog", "dt": 1e-4}})");
+  EXPECT_EQ(error_field(other_grid, dir), "<no error>");
+  other_grid["restart_error"] = json::parse(R"({"horizons": []})");
+  EXPECT_EQ(error_field(other_grid, dir), "restart_error.horizons");
+}
+
+// A scene path given twice, or inside another given elsewhere, would be decided by the order in
+// which the overrides are applied: refused wherever the two come from.
+TEST(ExperimentFile, OverlappingKeysAreRefused) {
+  const fs::path dir = temp_dir("overlap");
+  write_scene(dir);
+  json whole = two_by_three();
+  whole["set"] = json::parse(R"({"integrator": {"name": "leapfrog", "dt": 0.001}})");
+  EXPECT_EQ(error_field(whole, dir), "set.integrator");
+  json inside_set = two_by_three();
+  inside_set["sweep"].erase("integrator.dt");
+  inside_set["set"] = json::parse(R"({"cloth": {"rows": 4}, "cloth.cols": 4})");
+  EXPECT_EQ(error_field(inside_set, dir), "set.cloth");
+  json inside_sweep = two_by_three();
+  inside_sweep["sweep"]["integrator"] = json::array({json::parse(R"({"dt": 0.001})")});
+  EXPECT_EQ(error_field(inside_sweep, dir), "sweep.integrator");
+  json inside_case = two_by_three();
+  inside_case["sweep"].erase("integrator.dt");
+  inside_case["cases"] = json::parse(R"([{"cloth.rows": 4, "cloth": {"cols": 4}}])");
+  EXPECT_EQ(error_field(inside_case, dir), "cases[0].cloth");  // keys in JSON order
+  json case_and_set = inside_case;
+  case_and_set["cases"] = json::parse(R"([{"output.energy_interval": 0.01}])");
+  case_and_set["set"] = json::parse(R"({"output": {"energy_interval": 0.02}})");
+  EXPECT_EQ(error_field(case_and_set, dir), "cases[0].output.energy_interval");
+  json apart = two_by_three();
+  apart["set"] = json::parse(R"({"integrator.rtol": 1e-4, "cloth.rows": 4})");
+  EXPECT_EQ(error_field(apart, dir), "<no error>") << "integrator.rtol and integrator.dt are apart";
+  // With repeats, a whole perturbation object would replace the seeds or the default position.
+  json ensemble = two_by_three();
+  ensemble["repeats"] = 2;
+  ensemble["set"] = json::parse(R"({"perturbation": {"position": 0.01}})");
+  EXPECT_EQ(error_field(ensemble, dir), "set.perturbation");
+  ensemble.erase("set");
+  ensemble["sweep"]["perturbation"] = json::array({json::parse(R"({"seed": 3})")});
+  EXPECT_EQ(error_field(ensemble, dir), "sweep.perturbation");
+  ensemble["sweep"].erase("perturbation");
+  ensemble["sweep"]["perturbation.position"] = json::array({0.01});
+  EXPECT_EQ(error_field(ensemble, dir), "<no error>");
 }
 
 TEST(ExperimentFile, APlanBeyondTheLimitIsRefusedFromItsCounts) {

@@ -45,7 +45,20 @@ TEST(ExperimentRun, BadOverridesStopBeforeAnyRun) {
   json bad_probe = two_by_three();
   bad_probe["sweep"].erase("integrator.dt");
   bad_probe["bisect"] = json::parse(R"({"parameter": "cloth.nope", "low": 0.001, "high": 0.01})");
-  EXPECT_EQ(error(bad_probe), exp + ": bisect.parameter: unknown key (in cloth.json)");
+  EXPECT_EQ(error(bad_probe), exp + ": bisect: cloth.nope = 0.001 (bisect.low): unknown key (in cloth.json)");
+  // Both ends of the bisection are checked (stiffness is bounded by 1e12 N/m).
+  bad_probe["bisect"] = json::parse(R"({"parameter": "cloth.k_structural", "low": 1, "high": 1e20})");
+  EXPECT_EQ(error(bad_probe), exp + ": bisect: cloth.k_structural = 1e+20 (bisect.high): must be "
+                                    "at most 1000000000000.0, got 1e+20 (in cloth.json)");
+  // An error the probe causes in another field is the probe's (16 x 10^6 particles).
+  bad_probe["bisect"] = json::parse(R"({"parameter": "cloth.rows", "low": 2, "high": 4000000})");
+  EXPECT_EQ(error(bad_probe).find(exp + ": bisect: cloth.rows = 4000000 (bisect.high): cloth.cols: "
+                                       "rows x cols = 16000000 particles"), 0u)
+      << error(bad_probe);
+  // A key the experiment makes inside an object the scene does not know names the experiment.
+  json unknown_object = two_by_three();
+  unknown_object["sweep"]["nosuch.key"] = json::array({1});
+  EXPECT_EQ(error(unknown_object), exp + ": sweep.nosuch.key: unknown key (in cloth.json)");
 }
 
 // What a run builds before its first step (the dummy, the hand recording, the step count) is
