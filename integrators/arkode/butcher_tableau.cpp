@@ -106,6 +106,11 @@ ButcherTableau read_butcher_tableau(const nlohmann::json& object, const std::str
     t.d = coefficients(in, "d");
     if (t.d.size() != s) throw in.error("d", "must have one weight per node of c");
     if (!near(sum(t.d), 1.0)) throw in.error("d", "weights must sum to 1");
+    // The error estimate is the difference of the two solutions: with d = b it is zero, and an
+    // adaptive run would take every step it tries, whatever its error.
+    bool same = true;
+    for (std::size_t i = 0; i < s; ++i) same = same && near(t.d[i], t.b[i]);
+    if (same) throw in.error("d", "equals b: an embedding must differ from b to estimate the error");
   }
   const int b_order = tableau_order(t, t.b);
   t.q = in.integer("q", b_order);

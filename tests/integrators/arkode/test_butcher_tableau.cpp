@@ -65,6 +65,11 @@ TEST(ButcherTableau, InconsistentTablesNameTheirField) {
   t = implicit_midpoint;
   t["d"] = {-1e300};
   EXPECT_EQ(error_of(t), "scene.json: integrator.table.d: must be within +-1000.0");
+  // An embedding equal to b estimates an error of zero.
+  t = implicit_midpoint;
+  t["d"] = {1.0};
+  EXPECT_EQ(error_of(t), "scene.json: integrator.table.d: equals b: an embedding must differ from "
+                         "b to estimate the error");
   // The consistency tolerance, 1e-10: a published table's last digits pass, a wrong digit not.
   t = implicit_midpoint;
   t["c"] = {0.5 + 5e-11};
