@@ -3,7 +3,7 @@
 # puts analysis/ on the path of Debian's /usr/bin/python3 (`import drapeanalysis` anywhere).
 set -euo pipefail
 packages=(cmake g++ make libeigen3-dev libsundials-dev nlohmann-json3-dev libgtest-dev
-          libbenchmark-dev libcli11-dev libfmt-dev libtinyobjloader-dev python3-matplotlib
+          libbenchmark-dev libcli11-dev libfmt-dev libtinyobjloader-dev libspectra-dev python3-matplotlib
           libsuitesparse-dev libopenblas0-serial  # UMFPACK, and a fast BLAS under it
           python3-numpy python3-pandas python3-vtk9 ffmpeg parallel libjs-three chromium libcpp-httplib-dev
           chromium-driver python3-selenium  # the live page's browser check (Selenium)

@@ -80,8 +80,12 @@ int main(int argc, char** argv) {
       "--stability", stability_scene,
       "print the explicit steps' stability limit on this scene's cloth at its start: the fastest "
       "mode's frequency and damping rate (docs/model.md, \"Stability limit\")");
-  integrators->add_option("--set", stability_overrides,
-                          "with --stability: override a scene value (key.path=value)");
+  // An option that would be ignored is refused instead (exit 2), as CLI11 says which.
+  integrators
+      ->add_option("--set", stability_overrides,
+                   "with --stability: override a scene value (key.path=value)")
+      ->needs(stability_option);
+  stability_option->excludes(table_option);
   integrators->footer(
       "Examples:\n  drapelab integrators\n"
       "  drapelab integrators --table ARKODE_KVAERNO_4_2_3 > kvaerno.json\n"

@@ -48,7 +48,7 @@ int print_stability_limit(const Scene& scene) {
   const ExplicitStabilityLimit limit =
       explicit_stability_limit(run.system(), y.head(n3), y.tail(n3));
   fmt::print("{}: the cloth linearised at t = 0 ({} particles)\n", scene.file, n3 / 3);
-  fmt::print("  fastest mode: omega = {:.6g} rad/s ({} power iterations)\n", limit.omega,
+  fmt::print("  fastest mode: omega = {:.6g} rad/s ({} products with the Jacobian)\n", limit.omega,
              limit.iterations);
   fmt::print("  its damping rate: c = {:.6g} /s\n", limit.damping_rate);
   fmt::print("  leap-frog and symplectic Euler stable below dt = {:.6g} ms "

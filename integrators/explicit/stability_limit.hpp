@@ -12,14 +12,14 @@ struct ExplicitStabilityLimit {
   double damping_rate = 0.0;  ///< that mode's c = -u' M^-1 dF/dv u, u its unit vector [1/s]
   double undamped = 0.0;      ///< 2 / omega [s]
   double damped = 0.0;        ///< the largest h with h^2 omega^2 + 2 h c < 4 [s]
-  int iterations = 0;         ///< power iterations until the Rayleigh quotient settled
+  int iterations = 0;         ///< products with -M^-1 dF/dx the eigensolver took
 };
 
-/// The fastest mode of `system` linearised at (x, v), by power iteration on -M^-1 dF/dx (the
-/// exact Jacobian; its fixed rows and columns dropped) until the Rayleigh quotient changes by
-/// less than 1e-10 relative in an iteration (closer, round-off moves it: a 12 x 12 cloth's
-/// quotient never settled to 1e-12), at most `max_iterations` (std::runtime_error beyond).
+/// The fastest mode of `system` linearised at (x, v): the eigenvalue of largest magnitude of
+/// -M^-1 dF/dx (the exact Jacobian; its fixed rows and columns dropped) by Arnoldi's method with
+/// implicit restarts (Spectra), to a relative residual of 1e-10, at most `max_restarts`
+/// restarts (std::runtime_error beyond).
 ExplicitStabilityLimit explicit_stability_limit(const ClothSystem& system, ConstVecRef x,
-                                                ConstVecRef v, int max_iterations = 200000);
+                                                ConstVecRef v, int max_restarts = 1000);
 
 }  // namespace drape

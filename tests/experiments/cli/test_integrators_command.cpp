@@ -109,6 +109,13 @@ TEST(IntegratorsCommand, PrintsTheStabilityLimitOfTheDrapeScene) {
   const auto bad = run_drapelab("integrators --stability " + scene + " --set cloth.nope=1");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("--set cloth.nope=1"), std::string::npos) << bad.err;
+  // Options that would be ignored are refused.
+  const auto alone = run_drapelab("integrators --set duration=1");
+  EXPECT_EQ(alone.exit_code, 2);
+  EXPECT_NE(alone.err.find("--set requires --stability"), std::string::npos) << alone.err;
+  const auto both = run_drapelab("integrators --stability " + scene + " --table ARKODE_SDIRK_2_1_2");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.err.find("excludes"), std::string::npos) << both.err;
 }
 
 }  // namespace
