@@ -181,6 +181,8 @@ void JsonReader::finish() const {
 std::optional<std::string> unreadable_file_reason(const std::string& file) {
   std::error_code ec;
   const auto status = std::filesystem::status(file, ec);
+  // A symbolic link loop or a path through a file: the system's own words.
+  if (ec && ec != std::errc::no_such_file_or_directory) return ec.message();
   if (!std::filesystem::exists(status)) return "no such file";
   if (std::filesystem::is_directory(status)) return "is a directory, not a file";
   // A device or a pipe (/dev/zero) never ends: reading it would hang or exhaust memory.

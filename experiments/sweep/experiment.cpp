@@ -219,8 +219,8 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
       throw in.error(field, "expected a file name, got " + quote_json(scenes[k]));
     const std::string name = scenes[k].get<std::string>();
     const std::filesystem::path path = base_dir / name;
-    if (!std::filesystem::is_regular_file(path))
-      throw in.error(field, "no scene file " + path.string());
+    if (const auto reason = unreadable_file_reason(path.string()))
+      throw in.error(field, "no scene file " + path.string() + ": " + *reason);
     e.scenes.push_back(name);
     e.scene_paths.push_back(path);
   }

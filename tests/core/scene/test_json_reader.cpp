@@ -4,6 +4,7 @@
 #include "core/scene/json_reader.hpp"
 #include "tests/support/test_support.hpp"
 
+#include <filesystem>
 #include <fstream>
 
 namespace drape {
@@ -89,6 +90,14 @@ TEST(JsonReader, DirectoriesAndDevicesAreNotReadAsFiles) {
             "/tmp: is a directory, not a file");
   EXPECT_EQ(input_error_message([] { read_json_file("/dev/zero"); }),
             "/dev/zero: not a regular file");
+  // A symbolic link loop is said to be one, not "no such file" or a filesystem exception.
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "json_loop";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::create_symlink(dir / "b", dir / "a");
+  std::filesystem::create_symlink(dir / "a", dir / "b");
+  EXPECT_EQ(input_error_message([&] { read_json_file((dir / "a").string()); }),
+            (dir / "a").string() + ": Too many levels of symbolic links");
 }
 
 }  // namespace
