@@ -63,17 +63,33 @@ ClothParams read_cloth(JsonReader in) {
   // A fabric preset supplies the mass and stiffness defaults; explicit keys still win.
   const bool preset = in.has("fabric");
   const FabricSprings d = preset ? fabric_springs(read_fabric(in), c.spacing) : FabricSprings{};
-  c.particle_mass = in.at_most(
-      "particle_mass",
-      in.positive("particle_mass", preset ? in.number("particle_mass", d.particle_mass)
-                                          : in.number("particle_mass")),
-      limits::max_mass);
-  c.k_structural = stiffness(in, "k_structural",
-                             preset ? in.number("k_structural", d.k_structural)
-                                    : in.number("k_structural"),
-                             true);
-  c.k_shear = stiffness(in, "k_shear", in.number("k_shear", preset ? d.k_shear : c.k_structural), false);
-  c.k_bending = stiffness(in, "k_bending", in.number("k_bending", d.k_bending), false);
+  // A value the preset derives from the spacing (not given in the scene) that is out of range is
+  // the spacing's doing, and the error names it.
+  const auto derived = [&](const char* key, const auto& read) {
+    if (!preset || in.has(key)) return read();
+    try {
+      return read();
+    } catch (const InputError& e) {
+      throw in.error("spacing", std::string("gives the fabric's ") + key + ", which " + e.message());
+    }
+  };
+  c.particle_mass = derived("particle_mass", [&] {
+    return in.at_most("particle_mass",
+                      in.positive("particle_mass", preset ? in.number("particle_mass", d.particle_mass)
+                                                          : in.number("particle_mass")),
+                      limits::max_mass);
+  });
+  c.k_structural = derived("k_structural", [&] {
+    return stiffness(in, "k_structural",
+                     preset ? in.number("k_structural", d.k_structural) : in.number("k_structural"),
+                     true);
+  });
+  c.k_shear = derived("k_shear", [&] {
+    return stiffness(in, "k_shear", in.number("k_shear", preset ? d.k_shear : c.k_structural), false);
+  });
+  c.k_bending = derived("k_bending", [&] {
+    return stiffness(in, "k_bending", in.number("k_bending", d.k_bending), false);
+  });
   c.damping_spring = stiffness(in, "damping_spring", in.number("damping_spring", 0.0), false);
   c.damping_air = stiffness(in, "damping_air", in.number("damping_air", 0.0), false);
   in.finish();

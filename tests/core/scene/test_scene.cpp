@@ -218,6 +218,18 @@ TEST(Scene, ExplicitClothKeysOverrideTheFabric) {
   EXPECT_EQ(s.source["cloth"]["k_structural"], 50.0);
 }
 
+TEST(Scene, AFabricValueOutOfRangeNamesTheSpacingItCameFrom) {
+  nlohmann::json scene = valid_scene();
+  scene["cloth"].erase("particle_mass");
+  scene["cloth"].erase("k_structural");
+  scene["cloth"]["fabric"] = "gray-interlock";
+  scene["cloth"]["spacing"] = 1e-300;  // rho_A h^2 underflows to 0
+  EXPECT_EQ(error_for(scene), "scene.json: cloth.spacing: gives the fabric's particle_mass, which "
+                              "must be positive, got 0.0");
+  scene["cloth"]["particle_mass"] = 0.0;  // given in the scene: its own error
+  EXPECT_EQ(error_for(scene), "scene.json: cloth.particle_mass: must be positive, got 0.0");
+}
+
 TEST(Scene, UnknownFabricIsNamed) {
   EXPECT_EQ(error_for(with("cloth.fabric=\"velvet\"")).rfind("scene.json: cloth.fabric: unknown fabric 'velvet' (known: paper, ", 0), 0u)
       << error_for(with("cloth.fabric=\"velvet\""));
