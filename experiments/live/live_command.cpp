@@ -149,7 +149,15 @@ int live(const LiveOptions& o) {
   if (!server.bind_to_port("127.0.0.1", o.port))
     throw InputError("--port", "",
                      fmt::format("cannot listen on 127.0.0.1:{} (in use or not allowed)", o.port));
-  std::thread server_thread([&server] { server.listen_after_bind(); });
+  std::atomic<bool> listened{false};
+  std::thread server_thread([&server, &listened] {
+    server.listen_after_bind();
+    listened = true;
+  });
+  // httplib's stop() does nothing before the listening loop has started, which then never
+  // ends: a Ctrl-C right after the banner hung in server_thread.join(). The banner waits.
+  while (!server.is_running() && !listened)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
 
   // Ctrl-C stops the session from the moment the banner says so: a client that waits for the
   // banner and then interrupts must not meet the default handler (which kills the process).
