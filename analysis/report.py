@@ -342,6 +342,9 @@ def load_complete_experiment(directory):
         kind = "a run's folder, not an experiment's: " if (directory / "summary.json").exists() else ""
         raise ValueError(f"{directory}: {kind}no results.json (run `drapelab experiment` or `drapelab merge` first)")
     results = runfiles.load_experiment(directory)
+    if not results.get("runs"):
+        raise ValueError(f"{directory / 'results.json'}: no runs (an experiment with an empty plan, or a "
+                         "merge before any shard finished)")
     missing = [str(path) for row in results["runs"] for path in runfiles.missing_run_files(directory, row)]
     if missing:
         listed = ", ".join(missing[:5]) + (f" and {len(missing) - 5} more" if len(missing) > 5 else "")

@@ -327,7 +327,7 @@ def run_metrics(directory, row, rows_by_id):
         return out, windows
     summary = runfiles.read_summary(run)
     if (run / "energy.csv").exists():
-        out.update(energy_drift(runfiles.read_energy(run / "energy.csv")))
+        out.update(energy_drift(runfiles.read_run_energy(run, summary)))
     vib, windows = vibration(run, summary)
     out.update(vib)
     out.update(mapping_error(run, summary))

@@ -3,6 +3,7 @@ CSV files as pandas DataFrames (one column per CSV column), JSON files as dicts.
 names the file in its error when a column is missing, a cell is not a number or there are no
 rows."""
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -24,7 +25,12 @@ def read_json(path):
 
 def read_csv(path, columns=(), text_columns=(), nan_columns=()):
     """A CSV file as a DataFrame; `columns` must be present, and every column but `text_columns`
-    must hold numbers (`nan_columns` may also hold nan: a quantity not measured)."""
+    must hold numbers (`nan_columns` may also hold nan: a quantity not measured). Every line a
+    run writes ends in a newline: a file that does not was cut, and its last number may be cut
+    short yet still parse."""
+    with open(path, "rb") as f:
+        if f.seek(0, os.SEEK_END) and f.seek(-1, os.SEEK_END) >= 0 and f.read(1) != b"\n":
+            raise ValueError(f"{path}: the last line is cut (the file does not end in a newline)")
     try:
         frame = pd.read_csv(path, dtype={c: str for c in text_columns})
     except pd.errors.EmptyDataError as e:
@@ -67,6 +73,26 @@ def read_table(path, columns=()):
 def read_energy(path):
     """energy.csv: t, kinetic, spring, gravity, collision, total."""
     return read_csv(path, ("t", "total"))
+
+
+def read_run_energy(run, summary):
+    """A run's energy.csv, refused (a ValueError naming it) when its rows end before the run's
+    `sim_time` (summary.json) by more than an output interval and a step: a cut file, whose
+    metrics would describe the start of the run only. That much is allowed because a diverged
+    or failed run does not write its last step's row."""
+    path = Path(run) / "energy.csv"
+    energy = read_energy(path)
+    if "sim_time" not in summary:
+        raise ValueError(f"{Path(run) / 'summary.json'}: no sim_time")
+    end = float(summary["sim_time"])
+    interval = float(scene_value(summary, "output.energy_interval", 0.01))
+    slack = interval + float(summary.get("step_max", 0.0)) + 1e-9 * max(abs(end), 1.0)
+    last = float(energy["t"].iloc[-1])
+    if last < end - slack:
+        raise ValueError(f"{path}: the rows end at t = {last:g} s, before the run's sim_time = {end:g} s "
+                         f"in summary.json (more than output.energy_interval = {interval:g} s and a step): "
+                         "the file is cut")
+    return energy
 
 
 def read_state(path):

@@ -3,9 +3,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <vector>
 
+#include "core/scene/input_error.hpp"
+#include "experiments/run/run_files.hpp"
 #include "experiments/run/run_scene.hpp"
 
 namespace drape {
@@ -29,9 +34,45 @@ RecordingStats recording_stats(const Recording& recording) {
   return stats;
 }
 
+namespace {
+
+namespace fs = std::filesystem;
+
+// A directory or device would reach the format detection as "line 0: cannot tell the format".
+void check_input(const std::string& in) {
+  const fs::file_status status = fs::status(in);
+  if (fs::is_directory(status)) throw InputError(in, "", "is a directory, not a recording");
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw InputError(in, "", "is not a regular file (a device, pipe or socket), not a recording");
+}
+
+// Checked before reading: OUT opened for writing would empty IN when they are one file.
+void check_output(const std::string& in, const std::string& out) {
+  std::error_code ec;
+  if (fs::equivalent(in, out, ec))
+    throw InputError(out, "", "is the input recording " + in + ": converting would overwrite it");
+  if (fs::is_directory(out)) throw InputError(out, "", "is a directory, not an output file");
+  const fs::path parent = fs::absolute(out).parent_path();
+  if (!fs::is_directory(parent))
+    throw InputError(out, "", "its folder " + parent.string() + " does not exist");
+}
+
+}  // namespace
+
 int convert_command(const std::string& in, const std::string& out) {
+  check_input(in);
+  check_output(in, out);
   const Recording recording = read_recording(in);
-  write_drapelab_recording(recording, out);
+  errno = 0;
+  try {
+    write_drapelab_recording(recording, out);
+  } catch (const InputError& e) {
+    // The input was read and the output checked: what fails now is the write (a full disk, a
+    // quota, no permission), exit 4 as for every file drapelab writes.
+    const int error = errno;
+    throw OutputError(fmt::format("cannot write {}: {}", out,
+                                  error != 0 ? std::strerror(error) : e.message()));
+  }
   const RecordingStats s = recording_stats(recording);
   fmt::print("drapelab convert {} -> {}: {} frames, {:.3f} s, frame interval {:.4g} s, "
              "{} dropped frames\n",

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fmt/format.h>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include "core/scene/input_error.hpp"
@@ -14,6 +15,7 @@
 #include "experiments/live/live_page.hpp"
 #include "experiments/live/live_session.hpp"
 #include "experiments/live/sensor_bridge.hpp"
+#include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_scene.hpp"
 
 // Last: its system headers define macros that Eigen's templates (through the scene) trip over.
@@ -32,10 +34,30 @@ struct LiveOptions {
   std::string out_dir = "out/live";
   std::vector<std::string> overrides;
   int port = 0;
-  int sensor_port = 0;  ///< 0: no sensor bridge
+  std::optional<int> sensor_port;  ///< none: no sensor bridge
   bool live_hands = false;
   bool open = false;
+  bool overwrite = false;
 };
+
+void check_port(const std::string& option, int port) {
+  if (port < 1 || port > 65535)
+    throw InputError(option, "", fmt::format("{} is not a TCP port (1-65535)", port));
+}
+
+// Everything the command line alone can refuse, before the scene is read or a file written, as
+// `drapelab run` checks its --out.
+void check_options(const LiveOptions& o) {
+  check_port("--port", o.port);
+  if (o.sensor_port) {
+    check_port("--sensor-port", *o.sensor_port);
+    if (*o.sensor_port == o.port)
+      throw InputError("--port, --sensor-port", "",
+                       fmt::format("both are {}: the page and the sensor bridge need a port each",
+                                   o.port));
+  }
+  check_run_folder(o.out_dir, o.overwrite);
+}
 
 // GET /events: one server-sent event per new frame until the run ends or the client leaves.
 void serve_events(httplib::Server& server, const LiveSession& session) {
@@ -93,17 +115,17 @@ void serve_hand(httplib::Server& server, LiveSession& session) {
 }
 
 int live(const LiveOptions& o) {
-  if (o.port < 1 || o.port > 65535)
-    throw InputError("--port", "", fmt::format("{} is not a TCP port (1-65535)", o.port));
+  check_options(o);
   const auto owned_session = with_command_line_overrides(
       o.scene_file, o.overrides, [&o](const Scene& scene) {
-        return std::make_unique<LiveSession>(scene, o.out_dir, o.live_hands || o.sensor_port != 0);
+        return std::make_unique<LiveSession>(scene, o.out_dir,
+                                             o.live_hands || o.sensor_port.has_value());
       });
   LiveSession& session = *owned_session;
   std::unique_ptr<SensorBridge> sensor;
-  if (o.sensor_port != 0)
+  if (o.sensor_port)
     sensor = std::make_unique<SensorBridge>(
-        o.sensor_port, [&session](const HandFrame& frame, const std::string& where) {
+        *o.sensor_port, [&session](const HandFrame& frame, const std::string& where) {
           session.sensor_frame(frame, where);
         });
 
@@ -127,7 +149,15 @@ int live(const LiveOptions& o) {
   if (!server.bind_to_port("127.0.0.1", o.port))
     throw InputError("--port", "",
                      fmt::format("cannot listen on 127.0.0.1:{} (in use or not allowed)", o.port));
-  std::thread server_thread([&server] { server.listen_after_bind(); });
+  std::atomic<bool> listened{false};
+  std::thread server_thread([&server, &listened] {
+    server.listen_after_bind();
+    listened = true;
+  });
+  // httplib's stop() does nothing before the listening loop has started, which then never
+  // ends: a Ctrl-C right after the banner hung in server_thread.join(). The banner waits.
+  while (!server.is_running() && !listened)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
 
   // Ctrl-C stops the session from the moment the banner says so: a client that waits for the
   // banner and then interrupts must not meet the default handler (which kills the process).
@@ -136,7 +166,7 @@ int live(const LiveOptions& o) {
   std::signal(SIGTERM, on_interrupt);
   const std::string url = fmt::format("http://127.0.0.1:{}/", o.port);
   fmt::print("drapelab live {} -> {}: {} (Ctrl-C stops){}\n", o.scene_file, o.out_dir, url,
-             sensor ? fmt::format("; sensor bridge on 127.0.0.1:{}", o.sensor_port) : "");
+             sensor ? fmt::format("; sensor bridge on 127.0.0.1:{}", *o.sensor_port) : "");
   std::fflush(stdout);
   if (o.open) std::system(("xdg-open " + url + " >/dev/null 2>&1 &").c_str());
 
@@ -167,6 +197,7 @@ void add_live_command(CLI::App& app) {
   cmd->add_option("scene", o->scene_file, "scene JSON file")->required();
   cmd->add_option("--port", o->port, "TCP port on 127.0.0.1")->required();
   cmd->add_option("--out", o->out_dir, "output folder (default out/live)");
+  cmd->add_flag("--overwrite", o->overwrite, "replace the run files of an earlier run in --out");
   cmd->add_option("--set", o->overrides, "override a scene value: key.path=value")->take_all();
   cmd->add_option("--sensor-port", o->sensor_port,
                   "read hand frames (recording JSON Lines) on 127.0.0.1:PORT; implies --live-hands");

@@ -12,6 +12,7 @@
 #include "core/input/input_config.hpp"
 #include "experiments/live/live_hands.hpp"
 #include "experiments/run/frame_recorder.hpp"
+#include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_files.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "experiments/run/scene_simulation.hpp"
@@ -88,7 +89,8 @@ LiveSession::LiveSession(Scene scene, std::filesystem::path out_dir, bool live_h
     m_live_hands->sample(0.0, input.track);
   }
   m_scene_json = page_scene_json(m_run->system(), m_scene, m_live_hands != nullptr);
-  std::filesystem::create_directories(m_out_dir);
+  // Built (and so validated) first; then no file of an earlier run may stay beside this one's.
+  clear_run_folder(m_out_dir);
   const ClothSystem& system = m_run->system();
   if (system.dummy()) write_dummy_csv(m_out_dir / "dummy.csv", *system.dummy());
   Simulation& simulation = m_run->simulation();

@@ -25,7 +25,8 @@ class LiveHands;
 /// A scene run against the wall clock; the server threads call key() and frame().
 class LiveSession {
  public:
-  /// Builds the scene (throws InputError like `drapelab run`); writes into out_dir. The hands
+  /// Builds the scene (throws InputError like `drapelab run`), then removes the run files of
+  /// out_dir (clear_run_folder; the caller checks it first) and writes into it. The hands
   /// come from the page's pointer and the sensor bridge (live hands) when `live_hands` is set or
   /// the scene has no hand samples of its own; otherwise from the scene's input.
   LiveSession(Scene scene, std::filesystem::path out_dir, bool live_hands);

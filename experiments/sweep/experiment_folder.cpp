@@ -11,15 +11,14 @@ namespace drape {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// experiment.json first: clearing removes the mark of an experiment folder before the rest.
 const std::vector<std::string>& experiment_file_names() {
   static const std::vector<std::string> names = {
       "experiment.json", "results.csv", "results.json", "summary.csv", "metrics.csv",
       "metrics.json",    "runs",        "shards",       "report"};
   return names;
 }
+
+namespace {
 
 // The name in an experiment.json; "" when it has none or cannot be read.
 std::string experiment_name(const fs::path& header) {

@@ -4,9 +4,13 @@
 // for, so that a folder never mixes a run's or another experiment's files with this one's.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace drape {
 
+/// The names an experiment writes at the top of its folder (files and folders), experiment.json
+/// first: clearing removes the mark of an experiment folder before the rest.
+const std::vector<std::string>& experiment_file_names();
 /// Throws InputError naming `dir` and --out when it cannot take the experiment `name`: it is a
 /// file, cannot be created (check_run_folder), or holds a run's files or another experiment's
 /// (experiment.json with another name) and `overwrite` is false. The same experiment's folder

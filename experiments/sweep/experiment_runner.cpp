@@ -47,12 +47,30 @@ std::optional<nlohmann::json> read_json_if_present(const fs::path& file) {
   return value;
 }
 
+// The result.json of run `id` in `dir`: its row, or none with why (`problem` empty when there is
+// no file yet). A file that is no result of this run (cut, edited, copied from another run)
+// leaves the run unfinished, so that resume reruns it and merge lists it.
+struct StoredResult {
+  std::optional<nlohmann::json> row;
+  std::string problem;
+};
+
+StoredResult read_result(const fs::path& dir, const std::string& id) {
+  const fs::path file = dir / "result.json";
+  if (!fs::exists(file)) return {};
+  std::ifstream in(file);
+  nlohmann::json row = nlohmann::json::parse(in, nullptr, false);
+  const std::string problem = row.is_discarded() ? "is not valid JSON" : result_row_problem(row, id);
+  if (!problem.empty()) return {std::nullopt, file.string() + ": " + problem};
+  return {std::move(row), ""};
+}
+
 // The row of a run finished earlier, or nothing when it must run (again): a run that could not
 // run or crashed is retried, in case the cause (a full disk, a bug since fixed) is gone.
 std::optional<nlohmann::json> finished_row(const RunSpec& run, const fs::path& dir) {
   const auto spec = read_json_if_present(dir / "run.json");
   if (!spec || run_identity(run) != *spec) return std::nullopt;
-  auto row = read_json_if_present(dir / "result.json");
+  auto row = read_result(dir, run.id).row;
   if (!row) return std::nullopt;
   const std::string status = row->value("status", "error");
   if (status == "error" || status == "crashed") return std::nullopt;
@@ -307,7 +325,7 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
                        "is not the plan of " + (out_dir / "experiment.json").string());
     for (const std::string& id : ids) {
       const fs::path from = source / "runs" / id, to = out_dir / "runs" / id;
-      if (!fs::exists(from / "result.json") || fs::exists(to / "result.json")) continue;
+      if (!read_result(from, id).row || read_result(to, id).row) continue;
       fs::remove_all(to);
       fs::create_directories(to.parent_path());
       fs::copy(from, to, fs::copy_options::recursive);
@@ -316,9 +334,9 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
   std::vector<nlohmann::json> rows;
   std::vector<std::string> missing;
   for (std::size_t k = 0; k < ids.size(); ++k) {
-    auto row = read_json_if_present(out_dir / "runs" / ids[k] / "result.json");
+    auto [row, problem] = read_result(out_dir / "runs" / ids[k], ids[k]);
     if (!row) {
-      missing.push_back(ids[k]);
+      missing.push_back(problem.empty() ? ids[k] : ids[k] + ": " + problem);
       continue;
     }
     (*row)["index"] = static_cast<int>(k);

@@ -36,7 +36,9 @@ struct ExperimentTally {
 ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOptions& options);
 
 /// Copies the runs of `sources` (other output folders of the same experiment) into out_dir and
-/// writes out_dir/results.{csv,json} from every finished run; returns the ids still missing.
+/// writes out_dir/results.{csv,json} from every finished run; returns the ids still missing,
+/// each followed by its result.json and what is wrong with it when it has one that is no
+/// result of the run (result_row_problem). A source's run replaces only a run without a valid one.
 std::vector<std::string> merge_results(const std::filesystem::path& out_dir,
                                        const std::vector<std::filesystem::path>& sources);
 

@@ -105,6 +105,24 @@ nlohmann::json error_row(const RunSpec& run, const std::string& message) {
   return row;
 }
 
+std::string result_row_problem(const nlohmann::json& row, const std::string& id) {
+  if (!row.is_object()) return fmt::format("is a JSON {}, not an object", row.type_name());
+  // The value of `key` as the file has it, for the message.
+  auto found = [&](const char* key) {
+    return row.contains(key) ? row[key].dump() : std::string("missing");
+  };
+  if (row.value("id", nlohmann::json()) != id)
+    return fmt::format("\"id\" is {}, not the run's id \"{}\"", found("id"), id);
+  if (row.value("run_dir", nlohmann::json()) != "runs/" + id)
+    return fmt::format("\"run_dir\" is {}, not \"runs/{}\"", found("run_dir"), id);
+  static const std::set<nlohmann::json> statuses = {"ok", "diverged", "failed", "error",
+                                                     "crashed"};
+  if (!statuses.count(row.value("status", nlohmann::json())))
+    return fmt::format("\"status\" is {}, not one of ok, diverged, failed, error, crashed",
+                       found("status"));
+  return "";
+}
+
 std::vector<std::string> result_columns(const std::vector<std::string>& parameters,
                                         const std::vector<nlohmann::json>& rows) {
   std::vector<std::string> columns = identity_columns();

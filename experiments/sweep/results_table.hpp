@@ -14,6 +14,10 @@ namespace drape {
 nlohmann::json result_row(const RunSpec& run, const nlohmann::json& summary);
 /// The row of a run that could not run at all (status `error`, the message as reason).
 nlohmann::json error_row(const RunSpec& run, const std::string& message);
+/// Why `row`, read back from a run's result.json, is not a result of run `id` (empty when it
+/// is): it must be an object whose `id` is `id`, whose `run_dir` is `runs/<id>` and whose
+/// `status` is one of ok, diverged, failed, error and crashed.
+std::string result_row_problem(const nlohmann::json& row, const std::string& id);
 /// The CSV columns of some rows: identity, parameters (in plan order), known metrics, the rest.
 std::vector<std::string> result_columns(const std::vector<std::string>& parameters,
                                         const std::vector<nlohmann::json>& rows);

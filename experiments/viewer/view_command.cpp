@@ -8,12 +8,61 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "core/scene/input_error.hpp"
+#include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_scene.hpp"
+#include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/viewer/viewer_page.hpp"
 
 namespace drape {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// The page names each run by its folder, and a JSON string must be UTF-8.
+bool valid_utf8(const std::string& text) {
+  try {
+    (void)nlohmann::json(text).dump();
+    return true;
+  } catch (const nlohmann::json::type_error&) {
+    return false;
+  }
+}
+
+// Throws InputError naming --out when the page would replace a file or folder of a run it
+// shows, or of that run's experiment (`view RUN --out RUN/summary.json` replaced the summary).
+void check_out(const fs::path& out, const std::vector<std::string>& run_dirs) {
+  std::error_code ec;
+  if (fs::is_directory(out, ec))
+    throw InputError(out.string(), "--out", "is a folder: name the HTML file to write");
+  const fs::path target = fs::weakly_canonical(fs::absolute(out), ec);
+  const std::string name = target.filename().string();
+  // An experiment's run also has these (experiment_runner.cpp, run_progress_file.hpp).
+  const std::vector<std::string> experiment_run_files = {"run.json", "result.json",
+                                                         "progress.json"};
+  for (const std::string& dir : run_dirs) {
+    const fs::path run = fs::weakly_canonical(fs::absolute(dir), ec);
+    if (target.parent_path() == run &&
+        (contains(run_file_names(), name) || contains(experiment_run_files, name)))
+      throw InputError(out.string(), "--out", "is the run's own " + name + " (in " + dir +
+                                                  "): name another HTML file");
+    const fs::path experiment = run.parent_path().parent_path();
+    if (run.parent_path().filename() == "runs" && target.parent_path() == experiment &&
+        fs::exists(experiment / "experiment.json", ec) && contains(experiment_file_names(), name))
+      throw InputError(out.string(), "--out", "is the experiment's own " + name + " (in " +
+                                                  experiment.string() +
+                                                  "): name another HTML file");
+  }
+}
+
+}  // namespace
 
 void view_command(const std::vector<std::string>& run_dirs, const std::string& out_file) {
   std::vector<ViewerRun> runs;
@@ -27,8 +76,13 @@ void view_command(const std::vector<std::string>& run_dirs, const std::string& o
       if (dir.filename().empty()) dir = dir.parent_path();  // a trailing slash
       runs[i].name = dir.parent_path().filename().string() + "/" + names[i];
     }
-  const std::string page = viewer_page(runs);
+  for (size_t i = 0; i < runs.size(); ++i)
+    if (!valid_utf8(runs[i].name))
+      throw InputError(run_dirs[i], "", "the folder's name is not valid UTF-8, which the page "
+                                        "needs to name the run: rename the folder");
   const std::filesystem::path out(out_file);
+  check_out(out, run_dirs);
+  const std::string page = viewer_page(runs);
   if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
   std::ofstream file(out, std::ios::binary);
   if (!(file << page) || !file.flush()) throw InputError(out_file, "", "cannot write the page");

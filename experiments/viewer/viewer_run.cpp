@@ -117,6 +117,16 @@ void read_energy(const fs::path& file, ViewerRun& run) {
   }
 }
 
+// The status of `path`, an InputError naming it when it cannot be known (a symbolic link
+// loop, no permission) rather than the filesystem's raw exception; a missing path is not_found.
+fs::file_status readable_status(const fs::path& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec && status.type() != fs::file_type::not_found)
+    throw InputError(path.string(), "", "cannot be read: " + ec.message());
+  return status;
+}
+
 }  // namespace
 
 ViewerRun read_viewer_run(const fs::path& dir) {
@@ -124,9 +134,9 @@ ViewerRun read_viewer_run(const fs::path& dir) {
   run.name = fs::absolute(dir).lexically_normal().filename().string();
   if (run.name.empty())
     run.name = fs::absolute(dir).lexically_normal().parent_path().filename().string();
-  if (!fs::is_directory(dir)) throw InputError(dir.string(), "", "not a folder");
+  if (!fs::is_directory(readable_status(dir))) throw InputError(dir.string(), "", "not a folder");
   const fs::path summary_file = dir / "summary.json";
-  if (!fs::is_regular_file(summary_file))
+  if (!fs::is_regular_file(readable_status(summary_file)))
     throw InputError(dir.string(), "",
                      "not a run folder: no summary.json (drapelab run writes it)");
   run.summary = read_json_file(summary_file.string());

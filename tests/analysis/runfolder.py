@@ -125,7 +125,8 @@ def write_experiment(directory, scenes=("scenes/a.json", "scenes/b.json"), steps
             name = f"{scene.rsplit('/', 1)[-1][:-5]}-{dt}"
             run = directory / "runs" / name
             run.mkdir(parents=True)
-            write_summary(run, events, CLOTH_SCENE | {"cloth": {**CLOTH_SCENE["cloth"], "rows": rows, "cols": cols}})
+            write_summary(run, events, CLOTH_SCENE | {"cloth": {**CLOTH_SCENE["cloth"], "rows": rows, "cols": cols}},
+                          sim_time=float(t[-1]))
             x = (base[None] + 0.02 * np.sin(2 * np.pi * 0.8 * t)[:, None, None] * [1, 0, 0]
                  + (1 + k) * 1e-3 * np.sin(2 * np.pi * 40 * t)[:, None, None] * [0, 0, 1])
             fixed = np.zeros((frames, rows * cols), int)

@@ -63,7 +63,7 @@ class EnergyDriftTest(runfolder.RunFolderTest):
 
     def test_from_energy_csv(self):
         run = self.make_run()
-        runfolder.write_summary(run)
+        runfolder.write_summary(run, sim_time=float(self.t[-1]))
         e0, a = -4.0, 0.02
         runfolder.write_energy(run, self.t, e0 * (1 + a * self.t))
         out, windows = metrics.run_metrics(self.directory, self.row(), {})

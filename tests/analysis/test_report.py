@@ -27,7 +27,7 @@ class ReportTableTest(unittest.TestCase):
             run_a = directory / "runs" / "a"
             events = [{"t": 0.1, "type": "attach_fixed", "attach_error": 0.002},
                       {"t": 0.2, "type": "attach_fixed", "attach_error": 0.004}]
-            runfolder.write_summary(run_a, events)
+            runfolder.write_summary(run_a, events, sim_time=1.0)
             t = np.linspace(0.0, 1.0, 11)
             runfolder.write_energy(run_a, t, -2.0 * (1 + 0.1 * t))
             runfolder.write_summary(directory / "runs" / "b", status="diverged")
@@ -178,6 +178,32 @@ class ReportBadInputTest(unittest.TestCase):
             self.assertIn(f"runs listed in results.json lack their files: {run / 'summary.json'}, "
                           f"{run / 'energy.csv'} (remove", done.stderr)
             self.assertFalse((Path(tmp) / "report").exists())
+
+    def assertRefused(self, directory, message):
+        """report.py exits 2 with `message` and writes no report."""
+        done = self.report(directory)
+        self.assertEqual(done.returncode, 2, done.stderr)
+        self.assertIn(message, done.stderr)
+        self.assertFalse((Path(directory) / "report").exists())
+
+    def test_a_cut_energy_csv_is_refused(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            runs = runfolder.write_experiment(Path(tmp))
+            energy = Path(tmp) / runs[0]["run_dir"] / "energy.csv"
+            whole = energy.read_bytes()
+            # `head -c 300`: later rows gone, the last number cut; then the same cut at a row's end.
+            energy.write_bytes(whole[:300])
+            self.assertRefused(tmp, f"{energy}: the last line is cut")
+            energy.write_bytes(whole[:whole.rindex(b"\n", 0, 300) + 1])
+            self.assertRefused(tmp, f"{energy}: the rows end at t = 0.025 s, before the run's sim_time = 1 s")
+
+    def test_an_experiment_without_runs_is_refused(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            runfolder.write_experiment(Path(tmp))
+            results = json.loads((Path(tmp) / "results.json").read_text())
+            results["runs"] = []
+            (Path(tmp) / "results.json").write_text(json.dumps(results))
+            self.assertRefused(tmp, f"{Path(tmp) / 'results.json'}: no runs")
 
     def test_a_missing_folder_a_file_and_a_run_folder_are_refused_with_exit_2(self):
         with tempfile.TemporaryDirectory() as tmp:

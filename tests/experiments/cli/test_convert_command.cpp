@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 
 #include "tests/support/drapelab_process.hpp"
 
@@ -41,6 +42,33 @@ TEST(ConvertCommand, PrintsFramesDurationAndDroppedFrames) {
   EXPECT_NE(r.out.find(expected), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(std::to_string(stats.dropped) + " dropped frames"), std::string::npos)
       << r.out;
+}
+
+TEST(ConvertCommand, RefusesItsInputAsOutputAFolderOrADeviceAndAFailedWriteIsExit4) {
+  const std::string dir = ::testing::TempDir() + "/convert_refused";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string in = dir + "/ges03.csv";
+  std::filesystem::copy_file(std::string(DRAPE_SOURCE_DIR) +
+                                 "/experiments/recordings/kinect-v2/Ges03_drawlines.csv", in);
+  const std::string source = drape::testing::read_text(in);
+  auto expect_error = [](const std::string& args, int code, const std::string& message) {
+    const auto r = drape::testing::run_drapelab("convert " + args);
+    EXPECT_EQ(r.exit_code, code) << args << ": " << r.err;
+    EXPECT_EQ(r.err, "drapelab: error: " + message + "\n") << args;
+  };
+  // The same file by another name: nothing written, the source intact.
+  expect_error(in + " " + dir + "/../convert_refused/ges03.csv", 2,
+               dir + "/../convert_refused/ges03.csv: is the input recording " + in +
+                   ": converting would overwrite it");
+  EXPECT_EQ(drape::testing::read_text(in), source);
+  expect_error(dir + " " + dir + "/out.jsonl", 2, dir + ": is a directory, not a recording");
+  expect_error("/dev/zero " + dir + "/out.jsonl", 2,
+               "/dev/zero: is not a regular file (a device, pipe or socket), not a recording");
+  expect_error(in + " " + dir, 2, dir + ": is a directory, not an output file");
+  expect_error(in + " " + dir + "/nope/out.jsonl", 2,
+               dir + "/nope/out.jsonl: its folder " + dir + "/nope does not exist");
+  expect_error(in + " /dev/full", 4, "cannot write /dev/full: No space left on device");
 }
 
 }  // namespace

@@ -135,16 +135,64 @@ TEST(ExperimentRun, WritesTablesResumesAndMergesShardsToTheSameResults) {
   EXPECT_EQ(without_wall_time(read_json(merged / "results.json")), without_wall_time(whole));
 }
 
+// The two-by-three experiment in a fresh folder, its plan, and options to run it into out/.
+struct SmallExperiment {
+  explicit SmallExperiment(const std::string& name)
+      : dir(temp_dir(name)),
+        experiment(parse(two_by_three(), write_scene(dir).parent_path())),
+        plan(drape::expand_runs(experiment)) {
+    options.out_dir = dir / "out";
+    options.jobs = 2;
+  }
+  fs::path dir;
+  Experiment experiment;
+  std::vector<drape::RunSpec> plan;
+  drape::ExperimentOptions options;
+};
+
+// A result.json that is no result of its run (cut, edited, from elsewhere) leaves the run
+// unfinished: merge lists it with the file and what is wrong, resume reruns it.
+TEST(ExperimentRun, ResultFilesThatAreNoResultAreRerunAndNamedByMerge) {
+  const SmallExperiment small("bad_results");
+  const auto& [dir, experiment, plan, options] = small;
+  drape::run_experiment(experiment, options);
+  const json whole = read_json(options.out_dir / "results.json");
+  auto result_file = [&](std::size_t k) { return options.out_dir / "runs" / plan[k].id / "result.json"; };
+  std::ofstream(result_file(0)) << "{}";
+  std::ofstream(result_file(1)) << "[1, 2]";
+  std::ofstream(result_file(2)) << "{";
+  json banana = read_json(result_file(3));
+  banana["status"] = "banana";
+  std::ofstream(result_file(3)) << banana;
+  json renamed = read_json(result_file(4));
+  renamed["id"] = plan[5].id;
+  std::ofstream(result_file(4)) << renamed;
+
+  const std::vector<std::string> missing = drape::merge_results(options.out_dir, {});
+  const std::vector<std::string> expected = {
+      plan[0].id + ": " + result_file(0).string() + ": \"id\" is missing, not the run's id \"" +
+          plan[0].id + "\"",
+      plan[1].id + ": " + result_file(1).string() + ": is a JSON array, not an object",
+      plan[2].id + ": " + result_file(2).string() + ": is not valid JSON",
+      plan[3].id + ": " + result_file(3).string() +
+          ": \"status\" is \"banana\", not one of ok, diverged, failed, error, crashed",
+      plan[4].id + ": " + result_file(4).string() + ": \"id\" is \"" + plan[5].id +
+          "\", not the run's id \"" + plan[4].id + "\""};
+  EXPECT_EQ(missing, expected);
+  EXPECT_EQ(read_json(options.out_dir / "results.json")["runs"].size(), 1u);
+
+  const drape::ExperimentTally t = drape::run_experiment(experiment, options);
+  EXPECT_EQ(t.skipped, 1);
+  EXPECT_EQ(t.ok + t.unstable, 5);
+  EXPECT_TRUE(drape::merge_results(options.out_dir, {}).empty());
+  EXPECT_EQ(without_wall_time(read_json(options.out_dir / "results.json")), without_wall_time(whole));
+}
+
 // A run that segfaults or aborts ends its own child process only (docs/experiments.md,
 // "Isolation"): the table has a row for every run, and resume retries the crashed one.
 TEST(ExperimentRun, CrashedRunsAreRecordedAndRetriedOnResume) {
-  const fs::path dir = temp_dir("crash");
-  write_scene(dir);
-  const Experiment experiment = parse(two_by_three(), dir);
-  const std::vector<drape::RunSpec> plan = drape::expand_runs(experiment);
-  drape::ExperimentOptions options;
-  options.out_dir = dir / "out";
-  options.jobs = 2;
+  const SmallExperiment small("crash");
+  const auto& [dir, experiment, plan, options] = small;
   auto run_with_crash = [&](const std::string& request) {
     ::setenv("DRAPELAB_TEST_CRASH", request.c_str(), 1);
     const drape::ExperimentTally t = drape::run_experiment(experiment, options);

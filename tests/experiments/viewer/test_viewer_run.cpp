@@ -59,5 +59,12 @@ TEST(ViewerRun, NotARunOrMalformedNamesFolderAndFile) {
             (bad_hands / "hands.csv").string() + ": line 2: particle index out of range: 7");
 }
 
+TEST(ViewerRun, ASymbolicLinkLoopIsNamed) {
+  const auto loop = testing::fresh_folder("loop") / "loop";
+  std::filesystem::create_symlink(loop, loop);
+  EXPECT_EQ(input_error_message([&] { read_viewer_run(loop); }),
+            loop.string() + ": cannot be read: Too many levels of symbolic links");
+}
+
 }  // namespace
 }  // namespace drape
