@@ -123,7 +123,7 @@ void check_lines(const std::string& file, double unit) {
       const std::string_view vertex(token.data(), std::min(token.find('/'), token.size()));
       const auto [end, ec] = std::from_chars(vertex.data(), vertex.data() + vertex.size(), index);
       if (ec != std::errc() || end != vertex.data() + vertex.size() || index == 0 ||
-          std::abs(index) > vertices)
+          index < -vertices || index > vertices)
         throw error(fmt::format("face corner \"{}\" is not a vertex of the {} before it", token,
                                 vertices));
     }

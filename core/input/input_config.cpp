@@ -169,7 +169,8 @@ HandInput load_hand_input(const InputConfig& config) {
   if (!config.recording.empty()) {
     const Recording recording = read_recording(config.recording, config.format);
     check_hand_positions(recording.frames, config.transform, config.recording, [&](std::size_t i) {
-      return recording.frame_places[i] + " (frame " + std::to_string(i + 1) + ", t = " +
+      const std::string place = i < recording.frame_places.size() ? recording.frame_places[i] + " " : "";
+      return place + "(frame " + std::to_string(i + 1) + ", t = " +
              nlohmann::json(recording.frames[i].t).dump() + " s)";
     });
     input.source = recording.source;

@@ -6,6 +6,7 @@
 
 #include "core/scene/json_reader.hpp"
 #include "core/scene/json_text.hpp"
+#include "core/scene/output_error.hpp"
 #include "core/scene/scene_limits.hpp"
 #include "core/input/kinect_readers.hpp"
 
@@ -142,14 +143,15 @@ nlohmann::ordered_json frame_to_json(const HandFrame& frame) {
 }
 
 void write_drapelab_recording(const Recording& recording, const std::string& file) {
+  errno = 0;
   std::ofstream out(file);
-  if (!out) throw InputError(file, "", "cannot open for writing");
+  if (!out) throw write_failure(file);
   // nlohmann writes doubles in their shortest round-trip form, so reading back is exact.
   out << nlohmann::ordered_json{{"format", native_format}, {"version", native_version}}.dump()
       << '\n';
   for (const auto& frame : recording.frames) out << frame_to_json(frame).dump() << '\n';
   out.flush();
-  if (!out) throw InputError(file, "", "write failed");
+  if (!out) throw write_failure(file);
 }
 
 Recording read_recording(const std::string& file, RecordingFormat format) {

@@ -70,7 +70,7 @@ void read_drapelab_header_line(const std::string& line, const std::string& file,
 /// its stream with it (docs/live.md).
 HandFrame read_drapelab_frame_line(const std::string& line, const std::string& file,
                                    const std::string& where);
-/// Writes a recording as native JSON Lines (round-trip precision); throws InputError on failure.
+/// Writes a recording as native JSON Lines (round-trip precision); throws OutputError on failure.
 void write_drapelab_recording(const Recording& recording, const std::string& file);
 /// Reads a recording in any supported format (Auto: detected from the content).
 Recording read_recording(const std::string& file, RecordingFormat format = RecordingFormat::Auto);

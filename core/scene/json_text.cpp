@@ -140,4 +140,13 @@ std::string quote_json(const nlohmann::json& value) {
   return shorten(out, max_quoted_chars);
 }
 
+bool is_utf8(const std::string& text) {
+  try {
+    static_cast<void>(nlohmann::json(text).dump());
+    return true;
+  } catch (const nlohmann::json::type_error&) {  // 316: invalid UTF-8 byte
+    return false;
+  }
+}
+
 }  // namespace drape

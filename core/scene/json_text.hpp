@@ -31,5 +31,8 @@ nlohmann::json parse_json_stream(std::istream& in, const std::string& file);
 /// `value` printed for a message: nesting below a few levels as "...", at most
 /// max_quoted_chars characters.
 std::string quote_json(const nlohmann::json& value);
+/// Whether `text` is valid UTF-8, as a JSON string must be: a file's strings are (the parser
+/// checks them), but a command line's bytes or a path need not be.
+bool is_utf8(const std::string& text);
 
 }  // namespace drape

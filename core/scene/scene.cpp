@@ -251,13 +251,8 @@ void apply_override(nlohmann::json& scene, const std::string& assignment) {
     throw InputError("--set", assignment, "expected key.path=value");
   const std::string path = assignment.substr(0, eq);
   const std::string text = assignment.substr(eq + 1);
-  // A scene file's strings are UTF-8 (the JSON parser checks it); a --set string is the shell's
-  // bytes, which the run would fail to write back into summary.json.
-  try {
-    static_cast<void>(nlohmann::json(assignment).dump());
-  } catch (const nlohmann::json::type_error&) {
-    throw InputError("--set", path, "not valid UTF-8 text");
-  }
+  // A --set string is the shell's bytes, which the run would fail to write into summary.json.
+  if (!is_utf8(assignment)) throw InputError("--set", path, "not valid UTF-8 text");
   nlohmann::json value = try_parse_json_text(text, "--set", path).value_or(nlohmann::json(text));
 
   nlohmann::json* node = &scene;

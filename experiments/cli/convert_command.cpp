@@ -3,13 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <vector>
 
 #include "core/scene/input_error.hpp"
+#include "core/scene/json_reader.hpp"
 #include "experiments/run/run_files.hpp"
 #include "experiments/run/run_scene.hpp"
 
@@ -38,12 +37,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A directory or device would reach the format detection as "line 0: cannot tell the format".
+// A directory, device or link loop would reach the format detection as "line 0: cannot tell
+// the format" or a filesystem exception.
 void check_input(const std::string& in) {
-  const fs::file_status status = fs::status(in);
-  if (fs::is_directory(status)) throw InputError(in, "", "is a directory, not a recording");
-  if (fs::exists(status) && !fs::is_regular_file(status))
-    throw InputError(in, "", "is not a regular file (a device, pipe or socket), not a recording");
+  if (const auto reason = unreadable_file_reason(in)) throw InputError(in, "", *reason);
 }
 
 // Checked before reading: OUT opened for writing would empty IN when they are one file.
@@ -51,9 +48,10 @@ void check_output(const std::string& in, const std::string& out) {
   std::error_code ec;
   if (fs::equivalent(in, out, ec))
     throw InputError(out, "", "is the input recording " + in + ": converting would overwrite it");
-  if (fs::is_directory(out)) throw InputError(out, "", "is a directory, not an output file");
+  if (fs::is_directory(out, ec)) throw InputError(out, "", "is a directory, not an output file");
+  if (ec && ec != std::errc::no_such_file_or_directory) throw InputError(out, "", ec.message());
   const fs::path parent = fs::absolute(out).parent_path();
-  if (!fs::is_directory(parent))
+  if (!fs::is_directory(parent, ec))
     throw InputError(out, "", "its folder " + parent.string() + " does not exist");
 }
 
@@ -63,16 +61,7 @@ int convert_command(const std::string& in, const std::string& out) {
   check_input(in);
   check_output(in, out);
   const Recording recording = read_recording(in);
-  errno = 0;
-  try {
-    write_drapelab_recording(recording, out);
-  } catch (const InputError& e) {
-    // The input was read and the output checked: what fails now is the write (a full disk, a
-    // quota, no permission), exit 4 as for every file drapelab writes.
-    const int error = errno;
-    throw OutputError(fmt::format("cannot write {}: {}", out,
-                                  error != 0 ? std::strerror(error) : e.message()));
-  }
+  write_drapelab_recording(recording, out);  // OutputError (exit 4) when the write fails
   const RecordingStats s = recording_stats(recording);
   fmt::print("drapelab convert {} -> {}: {} frames, {:.3f} s, frame interval {:.4g} s, "
              "{} dropped frames\n",

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "core/scene/input_error.hpp"
 #include "experiments/run/scene_simulation.hpp"
 #include "integrators/explicit/stability_limit.hpp"
@@ -49,7 +51,12 @@ int print_stability_limit(const Scene& scene) {
       explicit_stability_limit(run.system(), y.head(n3), y.tail(n3));
   fmt::print("{}: the cloth linearised at t = 0 ({} particles)\n", scene.file, n3 / 3);
   fmt::print("  fastest mode: omega = {:.6g} rad/s ({} products with the Jacobian)\n", limit.omega,
-             limit.iterations);
+             limit.jacobian_products);
+  // A complex omega^2 (the contact force is not a potential's): the bound is then an estimate.
+  if (std::abs(limit.omega2_imaginary) > 1e-8 * limit.omega * limit.omega)
+    fmt::print("  (omega^2 has an imaginary part {:.3g} /s^2: the Jacobian is not symmetric here "
+               "and the bound below is an estimate)\n",
+               limit.omega2_imaginary);
   fmt::print("  its damping rate: c = {:.6g} /s\n", limit.damping_rate);
   fmt::print("  leap-frog and symplectic Euler stable below dt = {:.6g} ms "
              "(dt^2 omega^2 + 2 dt c < 4; without damping 2 / omega = {:.6g} ms)\n",

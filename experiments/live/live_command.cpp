@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "core/scene/input_error.hpp"
+#include "core/scene/output_error.hpp"
 #include "core/scene/json_reader.hpp"
 #include "core/scene/json_text.hpp"
 #include "experiments/live/live_page.hpp"
@@ -215,6 +216,9 @@ void add_live_command(CLI::App& app) {
     int code = exit_ok;
     try {
       code = live(*o);
+    } catch (const OutputError& e) {
+      std::cerr << "drapelab: error: " << e.what() << "\n";
+      throw CLI::RuntimeError(exit_output);
     } catch (const std::exception& e) {
       std::cerr << "drapelab: error: " << e.what() << "\n";
       throw CLI::RuntimeError(exit_input);

@@ -3,16 +3,12 @@
 #include <fmt/format.h>
 
 #include <cerrno>
-#include <cstring>
 #include <stdexcept>
 
 namespace drape {
 
 void check_written(const std::ostream& out, const std::filesystem::path& file) {
-  if (out) return;
-  const int error = errno;  // the failed write's, read before anything else can change it
-  throw OutputError("cannot write " + file.string() +
-                    (error != 0 ? std::string(": ") + std::strerror(error) : std::string()));
+  if (!out) throw write_failure(file.string());
 }
 
 void finish_written(std::ostream& out, const std::filesystem::path& file) {

@@ -9,15 +9,12 @@
 #include <string>
 
 #include "core/model/cloth_system.hpp"
+#include "core/scene/output_error.hpp"
 
 namespace drape {
 
-/// A run file that could not be written (a full disk, a quota, a file size limit): the run stops
-/// at the first failed write with exit status 4 and leaves no summary.json (docs/outputs.md).
-class OutputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+// OutputError (core/scene/output_error.hpp): a run stops at its first failed write with exit
+// status 4 and leaves no summary.json (docs/outputs.md).
 
 /// Throws OutputError naming `file` and the system's reason once `out` has failed. Rows are
 /// buffered: a failed write shows when the buffer is written, within a buffer's length.

@@ -157,11 +157,19 @@ void check_disjoint(const JsonReader& in, const Experiment& e) {
             fmt::format("cases[{}]", c), in_case);
   }
   if (e.bisect) {
-    const auto in_bisect = [&](const std::string& key, const std::string& why) {
-      return in.error("bisect.parameter", "'" + key + "' " + why);
+    // The probe is applied last: a value it replaces (the parameter itself, or a key inside it)
+    // would be ignored by every probe. An object that holds the parameter is merged into.
+    const std::string& p = e.bisect->parameter;
+    const auto check_probe = [&](const std::vector<Override>& others, const std::string& where) {
+      for (const auto& [other, value] : others)
+        if (other == p || other.rfind(p + ".", 0) == 0)
+          throw in.error("bisect.parameter",
+                         "'" + p + "' would replace " + where + "." + other + " in every probe");
     };
-    check({e.bisect->parameter}, swept, "sweep", in_bisect);
-    for (const auto& one : e.cases) check({e.bisect->parameter}, one, "a case", in_bisect);
+    check_probe(e.set, "set");
+    check_probe(swept, "sweep");
+    for (std::size_t c = 0; c < e.cases.size(); ++c)
+      check_probe(e.cases[c], fmt::format("cases[{}]", c));
   }
 }
 
@@ -247,12 +255,13 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
     e.reference = read_overrides(in, "reference");
     if (e.reference.empty()) throw in.error("reference", "must set at least one value");
     // A reference is another method for the same problem: the report compares every run with
-    // its reference particle by particle, over the same time, so nothing else may differ.
+    // its reference particle by particle, over the same time, so nothing but the method and
+    // what it writes (outputs never change the steps) may differ.
     for (const auto& [key, value] : e.reference)
-      if (!overlap(key, "integrator") || key == "integrator.max_steps")
+      if (!overlap(key, "integrator") && !overlap(key, "output"))
         throw in.error("reference." + key,
-                       "a reference changes only the method (integrator.* keys but max_steps), "
-                       "so that it solves the runs' problem");
+                       "a reference changes only the method and its outputs (integrator.* and "
+                       "output.* keys), so that it solves the runs' problem");
   }
   if (in.has("restart_error")) {
     if (e.reference.empty())

@@ -40,7 +40,8 @@ void check_experiment_folder(const fs::path& dir, const std::string& name, bool 
     if (fs::exists(fs::symlink_status(path, ec)) && !fs::is_directory(path, ec))
       throw InputError(dir.string(), "--out",
                        std::string("holds a file '") + folder +
-                           "' where the experiment writes a folder; remove it or choose another folder");
+                           "' where the experiment writes a folder; remove it, choose another "
+                           "folder or pass --overwrite");
   }
   if (!fs::exists(fs::symlink_status(header, ec))) return;
   const std::string other = experiment_name(header);

@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/scene/input_error.hpp"
+#include "core/scene/json_text.hpp"
+#include "core/scene/output_error.hpp"
 #include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
@@ -24,16 +26,6 @@ namespace fs = std::filesystem;
 
 bool contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-// The page names each run by its folder, and a JSON string must be UTF-8.
-bool valid_utf8(const std::string& text) {
-  try {
-    (void)nlohmann::json(text).dump();
-    return true;
-  } catch (const nlohmann::json::type_error&) {
-    return false;
-  }
 }
 
 // Throws InputError naming --out when the page would replace a file or folder of a run it
@@ -77,15 +69,16 @@ void view_command(const std::vector<std::string>& run_dirs, const std::string& o
       runs[i].name = dir.parent_path().filename().string() + "/" + names[i];
     }
   for (size_t i = 0; i < runs.size(); ++i)
-    if (!valid_utf8(runs[i].name))
+    if (!is_utf8(runs[i].name))  // the page names each run by its folder, in a JSON string
       throw InputError(run_dirs[i], "", "the folder's name is not valid UTF-8, which the page "
                                         "needs to name the run: rename the folder");
   const std::filesystem::path out(out_file);
   check_out(out, run_dirs);
   const std::string page = viewer_page(runs);
   if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
+  errno = 0;
   std::ofstream file(out, std::ios::binary);
-  if (!(file << page) || !file.flush()) throw InputError(out_file, "", "cannot write the page");
+  if (!(file << page) || !file.flush()) throw write_failure(out_file);
   size_t frames = 0;
   for (const ViewerRun& run : runs) frames += run.frames.size();
   std::cout << fmt::format("drapelab view: {} ({} run{}, {} frames, {:.1f} MB)\n", out_file,
@@ -105,6 +98,9 @@ void add_view_command(CLI::App& app) {
   view->callback([dirs, out] {
     try {
       view_command(*dirs, *out);
+    } catch (const OutputError& e) {
+      std::cerr << "drapelab: error: " << e.what() << "\n";
+      throw CLI::RuntimeError(exit_output);
     } catch (const std::exception& e) {
       std::cerr << "drapelab: error: " << e.what() << "\n";
       throw CLI::RuntimeError(exit_input);

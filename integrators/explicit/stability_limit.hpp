@@ -12,10 +12,13 @@ struct ExplicitStabilityLimit {
   double damping_rate = 0.0;  ///< that mode's c = -u' M^-1 dF/dv u, u its unit vector [1/s]
   double undamped = 0.0;      ///< 2 / omega [s]
   double damped = 0.0;        ///< the largest h with h^2 omega^2 + 2 h c < 4 [s]
-  int iterations = 0;         ///< products with -M^-1 dF/dx the eigensolver took
+  /// The imaginary part of omega^2: 0 for a symmetric Jacobian; the paper's contact force (no
+  /// potential's) can make the fastest mode's eigenvalue complex, and the bound an estimate.
+  double omega2_imaginary = 0.0;
+  int jacobian_products = 0;  ///< products with -M^-1 dF/dx the eigensolver took
 };
 
-/// The fastest mode of `system` linearised at (x, v): the eigenvalue of largest magnitude of
+/// The fastest mode of `system` linearised at (x, v): the eigenvalue of largest real part of
 /// -M^-1 dF/dx (the exact Jacobian; its fixed rows and columns dropped) by Arnoldi's method with
 /// implicit restarts (Spectra), to a relative residual of 1e-10, at most `max_restarts`
 /// restarts (std::runtime_error beyond).

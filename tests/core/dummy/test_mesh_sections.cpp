@@ -245,6 +245,7 @@ TEST_F(MeshSections, BadInputNamesTheSceneFieldAndTheMeshFile) {
   write("far_km.obj", "v 0 0 0\nv 1e4 0 0\nv 0 1 0\nf 1 2 3\n");
   write("two_corners.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\nf 1 2 3\n");
   write("overflow.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999/1\n");
+  write("most_negative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n");
   write("ahead.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n");
   // One vertical wall: every slice is a single segment enclosing nothing.
   write("wall.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
@@ -274,6 +275,8 @@ TEST_F(MeshSections, BadInputNamesTheSceneFieldAndTheMeshFile) {
                      "bad_index.obj: line 4: face corner \"7\" is not a vertex of the 3 before it");
   expect_input_error({{"mesh", "overflow.obj"}}, "dummy.mesh",
                      "overflow.obj: line 4: face corner \"99999999999/1\" is not a vertex of the 3 before it");
+  expect_input_error({{"mesh", "most_negative.obj"}}, "dummy.mesh",
+                     "most_negative.obj: line 4: face corner \"-9223372036854775808\" is not a vertex of the 3 before it");
   expect_input_error({{"mesh", "ahead.obj"}}, "dummy.mesh",
                      "ahead.obj: line 3: face corner \"3\" is not a vertex of the 2 before it");
   expect_input_error({{"mesh", "two_corners.obj"}}, "dummy.mesh",

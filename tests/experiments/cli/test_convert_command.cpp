@@ -62,13 +62,19 @@ TEST(ConvertCommand, RefusesItsInputAsOutputAFolderOrADeviceAndAFailedWriteIsExi
                dir + "/../convert_refused/ges03.csv: is the input recording " + in +
                    ": converting would overwrite it");
   EXPECT_EQ(drape::testing::read_text(in), source);
-  expect_error(dir + " " + dir + "/out.jsonl", 2, dir + ": is a directory, not a recording");
+  expect_error(dir + " " + dir + "/out.jsonl", 2, dir + ": is a directory, not a file");
   expect_error("/dev/zero " + dir + "/out.jsonl", 2,
-               "/dev/zero: is not a regular file (a device, pipe or socket), not a recording");
+               "/dev/zero: not a regular file");
   expect_error(in + " " + dir, 2, dir + ": is a directory, not an output file");
   expect_error(in + " " + dir + "/nope/out.jsonl", 2,
                dir + "/nope/out.jsonl: its folder " + dir + "/nope does not exist");
   expect_error(in + " /dev/full", 4, "cannot write /dev/full: No space left on device");
+  // A symbolic link loop, as IN or as OUT.
+  std::filesystem::create_symlink(dir + "/loop_b", dir + "/loop_a");
+  std::filesystem::create_symlink(dir + "/loop_a", dir + "/loop_b");
+  expect_error(dir + "/loop_a " + dir + "/out.jsonl", 2,
+               dir + "/loop_a: Too many levels of symbolic links");
+  expect_error(in + " " + dir + "/loop_a", 2, dir + "/loop_a: Too many levels of symbolic links");
 }
 
 }  // namespace

@@ -29,7 +29,8 @@ TEST(ExperimentFolder, AFileOrAFolderThatCannotBeCreatedIsRefused) {
   std::ofstream(dir / "with_file" / "runs") << "x";
   EXPECT_EQ(refusal(dir / "with_file"), (dir / "with_file").string() +
                                             ": --out: holds a file 'runs' where the experiment "
-                                            "writes a folder; remove it or choose another folder");
+                                            "writes a folder; remove it, choose another folder "
+                                            "or pass --overwrite");
   EXPECT_EQ(refusal(dir / "with_file", true), "no error");
   EXPECT_FALSE(fs::exists(dir / "new")) << "the check changes nothing";
 }

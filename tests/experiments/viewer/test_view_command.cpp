@@ -33,6 +33,10 @@ TEST(ViewCommand, RefusesAnOutThatIsTheRunsOwnFileOrFolder) {
   EXPECT_EQ(view_error(run, run), run.string() + ": --out: is a folder: name the HTML file to write");
   view_command({run.string()}, (run / "page.html").string());
   EXPECT_TRUE(fs::is_regular_file(run / "page.html"));
+  // A page that cannot be written is a failed write, exit 4, as for every file drapelab writes.
+  const auto full = testing::run_drapelab("view " + run.string() + " --out /dev/full");
+  EXPECT_EQ(full.exit_code, 4) << full.err;
+  EXPECT_EQ(full.err, "drapelab: error: cannot write /dev/full: No space left on device\n");
 }
 
 TEST(ViewCommand, RefusesAnOutThatIsTheExperimentsOwnFile) {
