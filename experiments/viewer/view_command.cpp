@@ -36,13 +36,15 @@ void check_out(const fs::path& out, const std::vector<std::string>& run_dirs) {
     throw InputError(out.string(), "--out", "is a folder: name the HTML file to write");
   const fs::path target = fs::weakly_canonical(fs::absolute(out), ec);
   const std::string name = target.filename().string();
-  // An experiment's run also has these (experiment_runner.cpp, run_progress_file.hpp).
-  const std::vector<std::string> experiment_run_files = {"run.json", "result.json",
-                                                         "progress.json"};
+  // An experiment's run also has these (experiment_runner.cpp, run_progress_file.hpp; a
+  // bisection's probes), and a live run its scene and hands (live_session.cpp).
+  const std::vector<std::string> other_run_files = {
+      "run.json", "result.json", "progress.json", "bisect.json", "probes", "scene.json",
+      "recording.jsonl"};
   for (const std::string& dir : run_dirs) {
     const fs::path run = fs::weakly_canonical(fs::absolute(dir), ec);
     if (target.parent_path() == run &&
-        (contains(run_file_names(), name) || contains(experiment_run_files, name)))
+        (contains(run_file_names(), name) || contains(other_run_files, name)))
       throw InputError(out.string(), "--out", "is the run's own " + name + " (in " + dir +
                                                   "): name another HTML file");
     const fs::path experiment = run.parent_path().parent_path();

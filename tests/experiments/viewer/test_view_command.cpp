@@ -31,6 +31,9 @@ TEST(ViewCommand, RefusesAnOutThatIsTheRunsOwnFileOrFolder) {
                 ": --out: is the run's own frames (in " + run.string() +
                 "): name another HTML file");
   EXPECT_EQ(view_error(run, run), run.string() + ": --out: is a folder: name the HTML file to write");
+  EXPECT_EQ(view_error(run, run / "recording.jsonl"),
+            (run / "recording.jsonl").string() + ": --out: is the run's own recording.jsonl (in " +
+                run.string() + "): name another HTML file");
   view_command({run.string()}, (run / "page.html").string());
   EXPECT_TRUE(fs::is_regular_file(run / "page.html"));
   // A page that cannot be written is a failed write, exit 4, as for every file drapelab writes.
