@@ -28,6 +28,7 @@ Mat3 read_rotation(JsonReader& reader, const std::string& key) {
       throw bad();
     }
   }
+  if (v.size() != 9) throw bad();  // [] has no item to refuse
   Mat3 r;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) r(i, j) = v[static_cast<std::size_t>(3 * i + j)];

@@ -1,5 +1,8 @@
 #include "core/scene/scene.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 
 #include "core/fabrics/fabric.hpp"
@@ -251,6 +254,10 @@ void apply_override(nlohmann::json& scene, const std::string& assignment) {
     throw InputError("--set", assignment, "expected key.path=value");
   const std::string path = assignment.substr(0, eq);
   const std::string text = assignment.substr(eq + 1);
+  // Each key opens an object: the nesting limit of every JSON input holds for the path too
+  // (50000 levels overflowed the stack where the scene is copied and destroyed).
+  if (std::count(path.begin(), path.end(), '.') >= max_json_depth)
+    throw InputError("--set", path, fmt::format("a key path deeper than {} levels", max_json_depth));
   // A --set string is the shell's bytes, which the run would fail to write into summary.json.
   if (!is_utf8(assignment)) throw InputError("--set", path, "not valid UTF-8 text");
   nlohmann::json value = try_parse_json_text(text, "--set", path).value_or(nlohmann::json(text));

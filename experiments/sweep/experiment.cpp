@@ -25,6 +25,8 @@ void check_key(const JsonReader& in, const std::string& field, const std::string
   if (key.empty() || key.front() == '.' || key.back() == '.' || key.find("..") != std::string::npos ||
       key.find('=') != std::string::npos)
     throw in.error(field, "'" + key + "' is not a scene path like integrator.dt");
+  if (std::count(key.begin(), key.end(), '.') >= max_json_depth)  // as apply_override
+    throw in.error(field, fmt::format("a key path deeper than {} levels", max_json_depth));
 }
 
 std::vector<Override> read_overrides(JsonReader& in, const std::string& key) {

@@ -143,6 +143,7 @@ TEST(InputConfig, ErrorsNameTheSceneFileAndTheDottedPath) {
       {"input.transform.rotation", "not a rotation"});
   bad(R"({"transform": {"rotation": [[1, 0, 0], [0, 1, 0]]}})", {"input.transform.rotation"});
   bad(R"({"transform": {"rotation": [1, 0, 0, 0, 1, 0, 0, 0]}})", {"input.transform.rotation"});
+  bad(R"({"transform": {"rotation": []}})", {"input.transform.rotation", "got []"});  // crashed
   bad(R"({"transform": {"translation": [0, 1]}})", {"input.transform.translation"});
   bad(R"({"transform": {"shift": [0, 1, 0]}})", {"input.transform.shift", "unknown key"});
   bad(R"({"time_scale": 0})", {"input.time_scale", "positive"});

@@ -189,6 +189,15 @@ TEST(Scene, OverridesCreatePathsAndParseJsonElseString) {
   EXPECT_THROW(apply_override(scene, "duration.x=1"), InputError);
   EXPECT_EQ(testing::input_error_message([&] { apply_override(scene, "description=\xff\xfe"); }),
             "--set: description: not valid UTF-8 text");
+  // The nesting limit holds for a key path (50000 levels overflowed the stack).
+  std::string deep;
+  for (int k = 0; k < 64; ++k) deep += "a.";
+  EXPECT_NE(testing::input_error_message([&] { apply_override(scene, deep + "b=1"); })
+                .find("a key path deeper than 64 levels"),
+            std::string::npos);
+  nlohmann::json copy = valid_scene();
+  deep.resize(deep.size() - 2);  // 63 objects and b: 64 levels, within the limit
+  apply_override(copy, deep + "b=1");
 }
 
 TEST(Scene, FabricPresetDerivesMassAndSpringsAndFillsTheSceneAsRun) {

@@ -240,6 +240,11 @@ TEST(ExperimentFile, OverlappingKeysAreRefused) {
   json apart = two_by_three();
   apart["set"] = json::parse(R"({"integrator.rtol": 1e-4, "cloth.rows": 4})");
   EXPECT_EQ(error_field(apart, dir), "<no error>") << "integrator.rtol and integrator.dt are apart";
+  json deep = two_by_three();
+  std::string path = "b";
+  for (int k = 0; k < 64; ++k) path = "a." + path;
+  deep["set"] = json{{path, 1}};
+  EXPECT_EQ(error_field(deep, dir), "set." + path) << "the nesting limit holds for a key path";
   // A bisection's probe, applied last, may not replace a value; it may be merged into an object.
   json bisecting = two_by_three();
   bisecting["sweep"].erase("integrator.dt");
