@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/scene/input_error.hpp"
+#include "core/scene/json_reader.hpp"
 #include "experiments/run/run_folder.hpp"
 
 namespace drape {
@@ -22,6 +23,7 @@ namespace {
 
 // The name in an experiment.json; "" when it has none or cannot be read.
 std::string experiment_name(const fs::path& header) {
+  if (unreadable_file_reason(header.string())) return "";  // a FIFO would wait for a writer
   std::ifstream in(header);
   const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
   if (!doc.is_object() || !doc.contains("name") || !doc["name"].is_string()) return "";

@@ -39,7 +39,10 @@ nlohmann::json run_identity(const RunSpec& run) {
   return j;
 }
 
+// A FIFO or a device where a JSON file belongs counts as no file (opening it would wait for a
+// writer for ever); a run with one is run again, which clears its folder first.
 std::optional<nlohmann::json> read_json_if_present(const fs::path& file) {
+  if (unreadable_file_reason(file.string())) return std::nullopt;
   std::ifstream in(file);
   if (!in) return std::nullopt;
   nlohmann::json value = nlohmann::json::parse(in, nullptr, false);
@@ -58,6 +61,8 @@ struct StoredResult {
 StoredResult read_result(const fs::path& dir, const std::string& id) {
   const fs::path file = dir / "result.json";
   if (!fs::exists(file)) return {};
+  if (const auto reason = unreadable_file_reason(file.string()))
+    return {std::nullopt, file.string() + ": " + *reason};
   std::ifstream in(file);
   nlohmann::json row = nlohmann::json::parse(in, nullptr, false);
   const std::string problem = row.is_discarded() ? "is not valid JSON" : result_row_problem(row, id);

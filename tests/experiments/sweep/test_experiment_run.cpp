@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include <sys/stat.h>
+
 #include "experiments/sweep/experiment_runner.hpp"
 #include "tests/experiments/sweep/experiment_fixtures.hpp"
 #include "tests/support/test_support.hpp"
@@ -167,6 +169,10 @@ TEST(ExperimentRun, ResultFilesThatAreNoResultAreRerunAndNamedByMerge) {
   json renamed = read_json(result_file(4));
   renamed["id"] = plan[5].id;
   std::ofstream(result_file(4)) << renamed;
+  // A FIFO where run.json belongs would block the reader for ever: the run is run again.
+  const fs::path spec = options.out_dir / "runs" / plan[5].id / "run.json";
+  fs::remove(spec);
+  ASSERT_EQ(mkfifo(spec.c_str(), 0600), 0);
 
   const std::vector<std::string> missing = drape::merge_results(options.out_dir, {});
   const std::vector<std::string> expected = {
@@ -182,8 +188,8 @@ TEST(ExperimentRun, ResultFilesThatAreNoResultAreRerunAndNamedByMerge) {
   EXPECT_EQ(read_json(options.out_dir / "results.json")["runs"].size(), 1u);
 
   const drape::ExperimentTally t = drape::run_experiment(experiment, options);
-  EXPECT_EQ(t.skipped, 1);
-  EXPECT_EQ(t.ok + t.unstable, 5);
+  EXPECT_EQ(t.skipped, 0);
+  EXPECT_EQ(t.ok + t.unstable, 6);
   EXPECT_TRUE(drape::merge_results(options.out_dir, {}).empty());
   EXPECT_EQ(without_wall_time(read_json(options.out_dir / "results.json")), without_wall_time(whole));
 }
