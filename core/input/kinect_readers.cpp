@@ -163,6 +163,8 @@ Recording read_ntu_skeleton(const std::string& file) {
     if (!detail::split_fields(line, ' ').empty())
       throw lines.error("", "data after the last of the " + std::to_string(frame_total) +
                                 " frames the file announces");
+  // As the other readers: a replay without frames would run without hands as if nothing were wrong.
+  if (recording.frames.empty()) throw InputError(file, "", "no frames (the frame count is 0)");
   return recording;
 }
 

@@ -2,6 +2,8 @@
 // The error of a file drapelab writes (docs/outputs.md): not bad input, exit status 4.
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -19,6 +21,19 @@ inline OutputError write_failure(const std::string& file) {
   const int error = errno;  // read before anything else can change it
   return OutputError("cannot write " + file +
                      (error != 0 ? std::string(": ") + std::strerror(error) : std::string()));
+}
+
+/// Why `file` cannot be the file a command writes, or nothing: an empty path, or a named pipe
+/// or socket, whose opening would wait for a reader for ever (a device such as /dev/null is
+/// written like a file). A folder is for the caller to name, as it says what it expected.
+inline std::optional<std::string> unwritable_file_reason(const std::string& file) {
+  if (file.empty()) return "is empty: name the file to write";
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory) return ec.message();
+  if (std::filesystem::is_fifo(status) || std::filesystem::is_socket(status))
+    return "is a named pipe or socket, not a file to write";
+  return std::nullopt;
 }
 
 }  // namespace drape

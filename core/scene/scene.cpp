@@ -289,6 +289,14 @@ std::optional<std::size_t> override_holding(const std::vector<std::string>& over
   return std::nullopt;
 }
 
+std::optional<std::size_t> override_behind(const std::vector<std::string>& overrides,
+                                           const std::string& field) {
+  if (const auto k = override_holding(overrides, field)) return k;
+  for (std::size_t k = overrides.size(); k-- > 0;)
+    if (overrides[k].rfind(field + ".", 0) == 0) return k;
+  return std::nullopt;
+}
+
 Scene parse_scene(const nlohmann::json& source, const std::string& file,
                   const std::filesystem::path& base_dir) {
   JsonReader in(source, file, "");

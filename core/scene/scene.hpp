@@ -73,6 +73,10 @@ void apply_override(nlohmann::json& scene, const std::string& assignment);
 /// override gave (the last override of a path wins), so it names the override, not the scene.
 std::optional<std::size_t> override_holding(const std::vector<std::string>& overrides,
                                             const std::string& field);
+/// override_holding, or else the last of `overrides` that made the object at `field`: an
+/// override nosuch.key=1 makes a `nosuch` that the scene then calls an unknown key.
+std::optional<std::size_t> override_behind(const std::vector<std::string>& overrides,
+                                           const std::string& field);
 /// Parses and validates a scene; throws InputError naming `file` and the field.
 Scene parse_scene(const nlohmann::json& source, const std::string& file,
                   const std::filesystem::path& base_dir);
@@ -88,7 +92,7 @@ auto with_command_line_overrides(const std::string& file,
   try {
     return use(load_scene(file, overrides));
   } catch (const InputError& e) {
-    const auto k = e.file() == file ? override_holding(overrides, e.field()) : std::nullopt;
+    const auto k = e.file() == file ? override_behind(overrides, e.field()) : std::nullopt;
     if (!k) throw;
     throw InputError("--set " + shorten(overrides[*k]), e.field(), e.message());
   }

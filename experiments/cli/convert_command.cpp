@@ -9,6 +9,7 @@
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
+#include "core/scene/output_error.hpp"
 #include "experiments/run/run_files.hpp"
 #include "experiments/run/run_scene.hpp"
 
@@ -45,6 +46,8 @@ void check_input(const std::string& in) {
 
 // Checked before reading: OUT opened for writing would empty IN when they are one file.
 void check_output(const std::string& in, const std::string& out) {
+  if (const auto reason = unwritable_file_reason(out))
+    throw InputError(out.empty() ? "OUT" : out, "", *reason);
   std::error_code ec;
   if (fs::equivalent(in, out, ec))
     throw InputError(out, "", "is the input recording " + in + ": converting would overwrite it");

@@ -14,6 +14,7 @@
 #include "experiments/sweep/experiment.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/sweep/experiment_runner.hpp"
+#include "experiments/sweep/run_validation.hpp"
 
 namespace drape {
 
@@ -60,8 +61,11 @@ int experiment_command(const std::string& file, const std::string& out_dir, int 
   options.progress = progress;
   options.terminal = ::isatty(2) != 0;
   if (list_only) {
-    for (const RunSpec& run : expand_runs(experiment)) {
-      if (options.shard && !options.shard->contains(run.index)) continue;
+    std::vector<RunSpec> listed;
+    for (const RunSpec& run : expand_runs(experiment))
+      if (!options.shard || options.shard->contains(run.index)) listed.push_back(run);
+    validate_runs(experiment, listed);  // a plan that cannot run is not listed as if it could
+    for (const RunSpec& run : listed) {
       std::string params;
       for (const auto& [key, value] : run.parameters) params += " " + key + "=" + value.dump();
       fmt::print("{:>5} {} {}{}\n", run.index, run.id, run.scene, params);
@@ -114,8 +118,14 @@ ExperimentCommands::ExperimentCommands(CLI::App& app) {
   m_experiment->add_option("--out", m_out, "output folder")->required();
   m_experiment->add_option("--jobs,-j", m_jobs, "parallel runs (default: all cores)")
       ->check(CLI::NonNegativeNumber);
-  m_experiment->add_option("--shard", m_shard,
-                           "run only the K-th of N slices (1-based K/N), then `drapelab merge`");
+  m_experiment
+      ->add_option("--shard", m_shard,
+                   "run only the K-th of N slices (1-based K/N), then `drapelab merge`")
+      ->check(CLI::Validator(
+          [](const std::string& value) {
+            return value.empty() ? std::string("expected K/N, got an empty value") : std::string();
+          },
+          "K/N"));
   m_experiment->add_flag("--list", m_list, "print the plan (index, run id, values) and stop");
   m_experiment->add_flag("--overwrite", m_overwrite,
                          "replace a run's or another experiment's files in --out (resume is lost)");

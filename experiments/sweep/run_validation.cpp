@@ -65,16 +65,6 @@ class RunInputCheck {
   std::set<std::string> m_built;
 };
 
-// The assignment that gave the value at `field`, or else made the object there: the
-// experiment's `nosuch.key` makes a `nosuch` that the scene then calls an unknown key.
-std::optional<std::size_t> assignment_behind(const std::vector<std::string>& assignments,
-                                             const std::string& field) {
-  if (const auto k = override_holding(assignments, field)) return k;
-  for (std::size_t k = assignments.size(); k-- > 0;)
-    if (assignments[k].rfind(field + ".", 0) == 0) return k;
-  return std::nullopt;
-}
-
 // Whether a bisecting run's scene is good without the probe's value (the scene's own, or none).
 bool runs_without_probe(const RunSpec& run) {
   try {
@@ -103,7 +93,7 @@ void validate_runs(const Experiment& experiment, const std::vector<RunSpec>& run
         inputs.check(load_scene(run.scene_path.string(), assignments));
       } catch (const InputError& e) {
         if (e.file() != run.scene_path.string()) throw;
-        const std::optional<std::size_t> k = assignment_behind(assignments, e.field());
+        const std::optional<std::size_t> k = override_behind(assignments, e.field());
         // The bisection's probe is the last assignment. An error in another field (rows x cols
         // when cloth.rows is probed) is the probe's too when the run without it is good.
         const bool probe = run.bisect && (k ? *k >= run.overrides.size() : runs_without_probe(run));

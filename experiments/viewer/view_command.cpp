@@ -31,6 +31,8 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
 // Throws InputError naming --out when the page would replace a file or folder of a run it
 // shows, or of that run's experiment (`view RUN --out RUN/summary.json` replaced the summary).
 void check_out(const fs::path& out, const std::vector<std::string>& run_dirs) {
+  if (const auto reason = unwritable_file_reason(out.string()))
+    throw InputError(out.empty() ? "--out" : out.string(), out.empty() ? "" : "--out", *reason);
   std::error_code ec;
   if (fs::is_directory(out, ec))
     throw InputError(out.string(), "--out", "is a folder: name the HTML file to write");

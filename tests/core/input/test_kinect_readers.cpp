@@ -232,6 +232,8 @@ TEST(NtuSkeleton, BadInputNamesFileAndLine) {
   expect_input_error(
       [&] { read_ntu_skeleton(write_file(dir, "count.skeleton", "x\n")); },
       {"count.skeleton", "line 1: the frame count"});
+  expect_input_error([&] { read_ntu_skeleton(write_file(dir, "none.skeleton", "0\n")); },
+                     {"none.skeleton", "no frames"});
 }
 
 }  // namespace

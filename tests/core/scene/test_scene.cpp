@@ -168,6 +168,9 @@ TEST(Scene, AnErrorInsideAnOverriddenValueFindsItsOverride) {
   EXPECT_FALSE(override_holding(overrides, "cloth.k_shear").has_value());
   EXPECT_FALSE(override_holding(overrides, "cloth").has_value());
   EXPECT_FALSE(override_holding({}, "duration").has_value());
+  // An override that made the object an error is about (a: unknown key) is behind it.
+  EXPECT_EQ(override_behind({"duration=1", "a.b=1"}, "a"), 1u);
+  EXPECT_EQ(override_behind(overrides, "cloth.k_structural"), 3u);
 }
 
 TEST(Scene, DirectionsMustBeOrthogonalUnitVectors) {

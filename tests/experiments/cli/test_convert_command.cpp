@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <sys/stat.h>
+
 #include "tests/support/drapelab_process.hpp"
 
 namespace {
@@ -75,6 +77,10 @@ TEST(ConvertCommand, RefusesItsInputAsOutputAFolderOrADeviceAndAFailedWriteIsExi
   expect_error(dir + "/loop_a " + dir + "/out.jsonl", 2,
                dir + "/loop_a: Too many levels of symbolic links");
   expect_error(in + " " + dir + "/loop_a", 2, dir + "/loop_a: Too many levels of symbolic links");
+  // A named pipe as OUT would wait for a reader for ever; an empty OUT is named.
+  ASSERT_EQ(mkfifo((dir + "/pipe").c_str(), 0600), 0);
+  expect_error(in + " " + dir + "/pipe", 2, dir + "/pipe: is a named pipe or socket, not a file to write");
+  expect_error(in + " ''", 2, "OUT: is empty: name the file to write");
 }
 
 }  // namespace

@@ -31,6 +31,7 @@ TEST(ViewCommand, RefusesAnOutThatIsTheRunsOwnFileOrFolder) {
                 ": --out: is the run's own frames (in " + run.string() +
                 "): name another HTML file");
   EXPECT_EQ(view_error(run, run), run.string() + ": --out: is a folder: name the HTML file to write");
+  EXPECT_EQ(view_error(run, ""), "--out: is empty: name the file to write");
   EXPECT_EQ(view_error(run, run / "recording.jsonl"),
             (run / "recording.jsonl").string() + ": --out: is the run's own recording.jsonl (in " +
                 run.string() + "): name another HTML file");
