@@ -23,6 +23,13 @@ inline OutputError write_failure(const std::string& file) {
                      (error != 0 ? std::string(": ") + std::strerror(error) : std::string()));
 }
 
+/// Removes what a failed write left of `file`, so that no half file looks like a whole one; only
+/// a regular file (a failed write to /dev/full must not remove the device).
+inline void remove_partial_file(const std::string& file) {
+  std::error_code ignored;
+  if (std::filesystem::is_regular_file(file, ignored)) std::filesystem::remove(file, ignored);
+}
+
 /// Why `file` cannot be the file a command writes, or nothing: an empty path, or a named pipe
 /// or socket, whose opening would wait for a reader for ever (a device such as /dev/null is
 /// written like a file). A folder is for the caller to name, as it says what it expected.

@@ -333,7 +333,15 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
       if (!read_result(from, id).row || read_result(to, id).row) continue;
       fs::remove_all(to);
       fs::create_directories(to.parent_path());
-      fs::copy(from, to, fs::copy_options::recursive);
+      try {
+        fs::copy(from, to, fs::copy_options::recursive);
+      } catch (const fs::filesystem_error& e) {
+        // A full disk: the half-copied run is removed, so that it is not taken as finished.
+        std::error_code ignored;
+        fs::remove_all(to, ignored);
+        throw OutputError("cannot copy " + from.string() + " to " + to.string() + ": " +
+                          e.code().message());
+      }
     }
   }
   std::vector<nlohmann::json> rows;

@@ -65,10 +65,10 @@ class RunInputCheck {
   std::set<std::string> m_built;
 };
 
-// Whether a bisecting run's scene is good without the probe's value (the scene's own, or none).
-bool runs_without_probe(const RunSpec& run) {
+// Whether `run`'s scene with `assignments` (a subset of its own) passes the check.
+bool passes_with(const RunSpec& run, const std::vector<std::string>& assignments) {
   try {
-    RunInputCheck().check(load_scene(run.scene_path.string(), run.assignments()));
+    RunInputCheck().check(load_scene(run.scene_path.string(), assignments));
     return true;
   } catch (const InputError&) {
     return false;
@@ -96,9 +96,20 @@ void validate_runs(const Experiment& experiment, const std::vector<RunSpec>& run
         const std::optional<std::size_t> k = override_behind(assignments, e.field());
         // The bisection's probe is the last assignment. An error in another field (rows x cols
         // when cloth.rows is probed) is the probe's too when the run without it is good.
-        const bool probe = run.bisect && (k ? *k >= run.overrides.size() : runs_without_probe(run));
-        if (!k && !probe) throw;
+        const bool probe =
+            run.bisect && (k ? *k >= run.overrides.size() : passes_with(run, run.assignments()));
         const std::string in_scene = " (in " + run.scene + ")";
+        if (!k && !probe) {
+          if (passes_with(run, {})) {
+            // No one value is at fault (pins off a grid a sweep made smaller): the experiment's
+            // values together are, and the message lists them.
+            std::string values;
+            for (const auto& [key, value] : run.overrides) values += " " + key + "=" + value.dump();
+            throw InputError(experiment.file, "",
+                             e.what() + std::string(", with the run's values:") + shorten(values));
+          }
+          throw;  // the scene's own error
+        }
         if (probe) {
           throw InputError(experiment.file, "bisect",
                            fmt::format("{} = {} (bisect.{}): {}{}{}", run.bisect->parameter,

@@ -82,7 +82,12 @@ void view_command(const std::vector<std::string>& run_dirs, const std::string& o
   if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
   errno = 0;
   std::ofstream file(out, std::ios::binary);
-  if (!(file << page) || !file.flush()) throw write_failure(out_file);
+  if (!(file << page) || !file.flush()) {
+    const OutputError error = write_failure(out_file);
+    file.close();
+    remove_partial_file(out_file);  // a cut page would load as an empty viewer
+    throw error;
+  }
   size_t frames = 0;
   for (const ViewerRun& run : runs) frames += run.frames.size();
   std::cout << fmt::format("drapelab view: {} ({} run{}, {} frames, {:.1f} MB)\n", out_file,

@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include <sys/stat.h>
+#include <sys/wait.h>
 
 #include "tests/support/drapelab_process.hpp"
 
@@ -71,6 +73,14 @@ TEST(ConvertCommand, RefusesItsInputAsOutputAFolderOrADeviceAndAFailedWriteIsExi
   expect_error(in + " " + dir + "/nope/out.jsonl", 2,
                dir + "/nope/out.jsonl: its folder " + dir + "/nope does not exist");
   expect_error(in + " /dev/full", 4, "cannot write /dev/full: No space left on device");
+  // Past a file size limit (1 kB; the recording is about 30 kB) nothing half written stays.
+  const std::string cut = dir + "/cut.jsonl";
+  const int status = std::system(("sh -c 'ulimit -f 1; exec " + std::string(DRAPELAB_EXE) +
+                                  " convert " + in + " " + cut + "' > /dev/null 2>&1")
+                                     .c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 4);
+  EXPECT_FALSE(std::filesystem::exists(cut)) << "a cut recording must not stay";
   // A symbolic link loop, as IN or as OUT.
   std::filesystem::create_symlink(dir + "/loop_b", dir + "/loop_a");
   std::filesystem::create_symlink(dir + "/loop_a", dir + "/loop_b");

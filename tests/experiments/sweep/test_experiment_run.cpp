@@ -61,6 +61,13 @@ TEST(ExperimentRun, BadOverridesStopBeforeAnyRun) {
   json unknown_object = two_by_three();
   unknown_object["sweep"]["nosuch.key"] = json::array({1});
   EXPECT_EQ(error(unknown_object), exp + ": sweep.nosuch.key: unknown key (in cloth.json)");
+  // A value that breaks another field (a pin off the grid a sweep made narrower) names the
+  // experiment and the run's values.
+  json narrow = two_by_three();
+  narrow["sweep"] = json::parse(R"({"cloth.cols": [2]})");
+  EXPECT_EQ(error(narrow), exp + ": " + (dir / "cloth.json").string() +
+                               ": pins[1]: [0, 3] is off the 4 x 2 grid, with the run's values: "
+                               "cloth.cols=2");
 }
 
 // What a run builds before its first step (the dummy, the hand recording, the step count) is
