@@ -163,7 +163,10 @@ struct SmallExperiment {
 // unfinished: merge lists it with the file and what is wrong, resume reruns it.
 TEST(ExperimentRun, ResultFilesThatAreNoResultAreRerunAndNamedByMerge) {
   const SmallExperiment small("bad_results");
-  const auto& [dir, experiment, plan, options] = small;
+  // References, not a structured binding: C++17 lambdas cannot capture one (clang refuses).
+  const Experiment& experiment = small.experiment;
+  const std::vector<drape::RunSpec>& plan = small.plan;
+  const drape::ExperimentOptions& options = small.options;
   drape::run_experiment(experiment, options);
   const json whole = read_json(options.out_dir / "results.json");
   auto result_file = [&](std::size_t k) { return options.out_dir / "runs" / plan[k].id / "result.json"; };
@@ -205,7 +208,10 @@ TEST(ExperimentRun, ResultFilesThatAreNoResultAreRerunAndNamedByMerge) {
 // "Isolation"): the table has a row for every run, and resume retries the crashed one.
 TEST(ExperimentRun, CrashedRunsAreRecordedAndRetriedOnResume) {
   const SmallExperiment small("crash");
-  const auto& [dir, experiment, plan, options] = small;
+  // References, not a structured binding: C++17 lambdas cannot capture one (clang refuses).
+  const Experiment& experiment = small.experiment;
+  const std::vector<drape::RunSpec>& plan = small.plan;
+  const drape::ExperimentOptions& options = small.options;
   auto run_with_crash = [&](const std::string& request) {
     ::setenv("DRAPELAB_TEST_CRASH", request.c_str(), 1);
     const drape::ExperimentTally t = drape::run_experiment(experiment, options);
