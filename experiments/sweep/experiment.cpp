@@ -101,11 +101,11 @@ BisectSpec read_bisect(JsonReader in) {
 // Two scene paths overlap when they are equal or one holds the other (integrator and
 // integrator.dt): applied in turn, the later would replace or change the earlier's value, so
 // which one a run gets would depend on the order of application, not on the definition.
+bool holds(const std::string& outer, const std::string& inner) {
+  return inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
+         inner[outer.size()] == '.';
+}
 bool overlap(const std::string& a, const std::string& b) {
-  const auto holds = [](const std::string& outer, const std::string& inner) {
-    return inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
-           inner[outer.size()] == '.';
-  };
   return a == b || holds(a, b) || holds(b, a);
 }
 
@@ -118,32 +118,34 @@ std::string clash_of(const std::string& key, const std::string& other, const std
 
 // Every scene path of a run comes from one place: `set`, the sweep or its case.
 void check_disjoint(const JsonReader& in, const Experiment& e) {
-  const auto check = [](const std::vector<std::string>& keys, const std::vector<Override>& others,
+  // Each key of `mine` against each of `others` (given in `where`), and a list against itself.
+  const auto check = [](const std::vector<Override>& mine, const std::vector<Override>& others,
                         const std::string& where, const auto& error) {
-    for (const std::string& key : keys)
-      for (const auto& [other, value] : others) {
+    for (const auto& [key, value] : mine)
+      for (const auto& [other, other_value] : others) {
         const std::string why = clash_of(key, other, where);
         if (!why.empty()) throw error(key, why);
       }
   };
+  const auto check_within = [](const std::vector<Override>& list, const std::string& where,
+                               const auto& error) {
+    for (std::size_t i = 0; i < list.size(); ++i)
+      for (std::size_t j = i + 1; j < list.size(); ++j) {
+        const std::string why = clash_of(list[i].first, list[j].first, where);
+        if (!why.empty()) throw error(list[i].first, why);
+      }
+  };
   std::vector<Override> swept;
   for (const auto& [key, values] : e.sweep) swept.emplace_back(key, values.front());
-  const auto keys = [](const std::vector<Override>& list) {
-    std::vector<std::string> out;
-    for (const auto& [key, value] : list) out.push_back(key);
-    return out;
-  };
   const auto in_set = [&](const std::string& key, const std::string& why) {
     return in.error("set." + key, why);
   };
   const auto in_sweep = [&](const std::string& key, const std::string& why) {
     return in.error("sweep." + key, why);
   };
-  check(keys(e.set), swept, "sweep", in_set);
-  for (std::size_t i = 0; i < e.set.size(); ++i)
-    check({e.set[i].first}, {e.set.begin() + static_cast<std::ptrdiff_t>(i) + 1, e.set.end()}, "set", in_set);
-  for (std::size_t i = 0; i < swept.size(); ++i)
-    check({swept[i].first}, {swept.begin() + static_cast<std::ptrdiff_t>(i) + 1, swept.end()}, "sweep", in_sweep);
+  check(e.set, swept, "sweep", in_set);
+  check_within(e.set, "set", in_set);
+  check_within(swept, "sweep", in_sweep);
   // A clash in a shared cases file names that file's field and the definition.
   for (std::size_t c = 0; c < e.cases.size(); ++c) {
     const auto in_case = [&](const std::string& key, const std::string& why) {
@@ -152,11 +154,9 @@ void check_disjoint(const JsonReader& in, const Experiment& e) {
       return InputError(e.cases_file, field, why + " in " + in.file());
     };
     const std::vector<Override>& one = e.cases[c];
-    check(keys(one), swept, "sweep", in_case);
-    check(keys(one), e.set, "set", in_case);
-    for (std::size_t i = 0; i < one.size(); ++i)
-      check({one[i].first}, {one.begin() + static_cast<std::ptrdiff_t>(i) + 1, one.end()},
-            fmt::format("cases[{}]", c), in_case);
+    check(one, swept, "sweep", in_case);
+    check(one, e.set, "set", in_case);
+    check_within(one, fmt::format("cases[{}]", c), in_case);
   }
   if (e.bisect) {
     // The probe is applied last: a value it replaces (the parameter itself, or a key inside it)
@@ -164,7 +164,7 @@ void check_disjoint(const JsonReader& in, const Experiment& e) {
     const std::string& p = e.bisect->parameter;
     const auto check_probe = [&](const std::vector<Override>& others, const std::string& where) {
       for (const auto& [other, value] : others)
-        if (other == p || other.rfind(p + ".", 0) == 0)
+        if (other == p || holds(p, other))
           throw in.error("bisect.parameter",
                          "'" + p + "' would replace " + where + "." + other + " in every probe");
     };

@@ -81,14 +81,19 @@ void validate_runs(const Experiment& experiment, const std::vector<RunSpec>& run
   RunInputCheck inputs;
   for (const RunSpec& run : runs) {
     // A bisection's probes span [low, high]: both ends are checked, each naming its field.
-    std::vector<std::pair<std::vector<std::string>, const char*>> variants;
+    struct Variant {
+      std::vector<std::string> assignments;
+      const char* end;  ///< the bisection's field of the probe, "" without one
+      double probe_at;  ///< the probe's value, with a bisection
+    };
+    std::vector<Variant> variants;
     if (run.bisect) {
-      variants.emplace_back(run.assignments(run.bisect->low), "low");
-      variants.emplace_back(run.assignments(run.bisect->high), "high");
+      variants.push_back({run.assignments(run.bisect->low), "low", run.bisect->low});
+      variants.push_back({run.assignments(run.bisect->high), "high", run.bisect->high});
     } else {
-      variants.emplace_back(run.assignments(), "");
+      variants.push_back({run.assignments(), "", 0.0});
     }
-    for (const auto& [assignments, end] : variants) {
+    for (const auto& [assignments, end, probe_at] : variants) {
       try {
         inputs.check(load_scene(run.scene_path.string(), assignments));
       } catch (const InputError& e) {
@@ -113,8 +118,7 @@ void validate_runs(const Experiment& experiment, const std::vector<RunSpec>& run
         if (probe) {
           throw InputError(experiment.file, "bisect",
                            fmt::format("{} = {} (bisect.{}): {}{}{}", run.bisect->parameter,
-                                       end == std::string("low") ? run.bisect->low : run.bisect->high,
-                                       end, e.field() == run.bisect->parameter ? "" : e.field() + ": ",
+                                       probe_at, end, e.field() == run.bisect->parameter ? "" : e.field() + ": ",
                                        e.message(), in_scene));
         }
         const std::string key = run.overrides[*k].first;
