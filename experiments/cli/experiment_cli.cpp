@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "core/scene/input_error.hpp"
+#include "experiments/cli/decimal_integer.hpp"
 #include "experiments/sweep/experiment.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/sweep/experiment_runner.hpp"
@@ -117,6 +118,7 @@ ExperimentCommands::ExperimentCommands(CLI::App& app) {
   m_experiment->add_option("file", m_file, "experiment JSON file")->required();
   m_experiment->add_option("--out", m_out, "output folder")->required();
   m_experiment->add_option("--jobs,-j", m_jobs, "parallel runs (default: all cores)")
+      ->transform(decimal_integer())
       ->check(CLI::NonNegativeNumber);
   m_experiment
       ->add_option("--shard", m_shard,

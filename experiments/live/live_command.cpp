@@ -13,6 +13,7 @@
 #include "core/scene/output_error.hpp"
 #include "core/scene/json_reader.hpp"
 #include "core/scene/json_text.hpp"
+#include "experiments/cli/decimal_integer.hpp"
 #include "experiments/live/live_page.hpp"
 #include "experiments/live/live_session.hpp"
 #include "experiments/live/sensor_bridge.hpp"
@@ -196,12 +197,13 @@ void add_live_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "live", "run a scene in wall-clock time and show it on http://127.0.0.1:PORT/");
   cmd->add_option("scene", o->scene_file, "scene JSON file")->required();
-  cmd->add_option("--port", o->port, "TCP port on 127.0.0.1")->required();
+  cmd->add_option("--port", o->port, "TCP port on 127.0.0.1")->required()->transform(decimal_integer());
   cmd->add_option("--out", o->out_dir, "output folder (default out/live)");
   cmd->add_flag("--overwrite", o->overwrite, "replace the run files of an earlier run in --out");
   cmd->add_option("--set", o->overrides, "override a scene value: key.path=value")->take_all();
   cmd->add_option("--sensor-port", o->sensor_port,
-                  "read hand frames (recording JSON Lines) on 127.0.0.1:PORT; implies --live-hands");
+                  "read hand frames (recording JSON Lines) on 127.0.0.1:PORT; implies --live-hands")
+      ->transform(decimal_integer());
   cmd->add_flag("--live-hands", o->live_hands,
                 "the page's pointer (POST /hand) and the sensor bridge drive the hands instead "
                 "of the scene's recording (always so for a scene without recorded hands)");

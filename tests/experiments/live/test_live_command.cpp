@@ -73,6 +73,16 @@ TEST(LiveCommand, RefusesAFileAsOutAndBadOrSharedPortsNamingTheOptions) {
   expect_error(live(dir / "out", "--port 8080 --sensor-port 8080"),
                "--port, --sensor-port: both are 8080: the page and the sensor bridge need a port "
                "each");
+  // Ports are decimal: CLI11 alone read 0x50 as port 80 and 010 as port 8.
+  expect_error(live(dir / "out", "--port 8080 --sensor-port 08080"),
+               "--port, --sensor-port: both are 8080: the page and the sensor bridge need a port "
+               "each");
+  for (const std::string ports : {"--port 0x50", "--port 8080 --sensor-port 0x50"}) {
+    const auto r = run_drapelab(live(dir / "out", ports));
+    EXPECT_EQ(r.exit_code, 2) << ports;
+    EXPECT_NE(r.err.find("port: expected a decimal integer, got '0x50'"), std::string::npos)
+        << r.err;
+  }
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
