@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <utility>
@@ -175,6 +176,43 @@ void check_disjoint(const JsonReader& in, const Experiment& e) {
   }
 }
 
+// The index of an earlier item equal to list[k], if any.
+template <class T>
+std::optional<std::size_t> earlier_equal(const std::vector<T>& list, std::size_t k) {
+  for (std::size_t j = 0; j < k; ++j)
+    if (list[j] == list[k]) return j;
+  return std::nullopt;
+}
+
+// A scene, swept value or case given twice would plan the same runs twice under one id, and the
+// plan would silently hold fewer runs (and an ensemble fewer samples) than the definition lists.
+void check_distinct(const JsonReader& in, const Experiment& e) {
+  const std::string why = "the plan would hold the same runs twice under one id (for more "
+                          "samples of one setting, use repeats)";
+  std::vector<std::filesystem::path> scenes;
+  for (const auto& path : e.scene_paths) {
+    std::error_code ignored;  // the files exist (checked on reading); a failure keeps the path
+    const auto canonical = std::filesystem::weakly_canonical(path, ignored);
+    scenes.push_back(canonical.empty() ? path : canonical);
+  }
+  for (std::size_t k = 0; k < scenes.size(); ++k)
+    if (const auto j = earlier_equal(scenes, k))
+      throw in.error(fmt::format("scenes[{}]", k),
+                     fmt::format("names the same file as scenes[{}]: {}", *j, why));
+  for (const auto& [key, values] : e.sweep)
+    for (std::size_t k = 0; k < values.size(); ++k)
+      if (const auto j = earlier_equal(values, k))
+        throw in.error(fmt::format("sweep.{}[{}]", key, k),
+                       fmt::format("{} is also item {}: {}", quote_json(values[k]), *j, why));
+  for (std::size_t k = 0; k < e.cases.size(); ++k)
+    if (const auto j = earlier_equal(e.cases, k)) {
+      const std::string field = fmt::format("cases[{}]", k);
+      const std::string message = fmt::format("equals cases[{}]: {}", *j, why);
+      if (e.cases_file.empty()) throw in.error(field, message);
+      throw InputError(e.cases_file, field, message + " in " + in.file());
+    }
+}
+
 // An ensemble perturbs every repeat's initial positions (docs/experiments.md, "Ensembles"): by
 // 1e-3 spacing unless the experiment sets perturbation.position itself. The seed is the repeat's.
 void add_ensemble_defaults(const JsonReader& in, Experiment& e) {
@@ -297,6 +335,7 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
   }
   in.finish();
   check_disjoint(in, e);
+  check_distinct(in, e);
   check_plan_size(e);
   return e;
 }

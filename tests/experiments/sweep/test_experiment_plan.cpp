@@ -268,6 +268,31 @@ TEST(ExperimentFile, OverlappingKeysAreRefused) {
   EXPECT_EQ(error_field(ensemble, dir), "<no error>");
 }
 
+TEST(ExperimentFile, AValueGivenTwiceIsRefusedSinceItsRunsWouldShareOneId) {
+  const fs::path dir = temp_dir("twice");
+  write_scene(dir);
+  json scenes = two_by_three();
+  scenes["scenes"] = json::array({"cloth.json", "./cloth.json"});  // one file, two spellings
+  EXPECT_EQ(error_field(scenes, dir), "scenes[1]");
+  json values = two_by_three();
+  values["sweep"]["integrator.dt"] = json::array({0.001, 0.002, 0.001});
+  EXPECT_EQ(error_field(values, dir), "sweep.integrator.dt[2]");
+  values["sweep"]["integrator.dt"] = json::array({1, 1.0});  // equal numbers
+  EXPECT_EQ(error_field(values, dir), "sweep.integrator.dt[1]");
+  json cases = two_by_three();
+  cases["sweep"].erase("integrator.dt");
+  cases["cases"] = json::parse(
+      R"([{"integrator.dt": 0.001}, {"integrator.dt": 0.002}, {"integrator.dt": 0.001}])");
+  EXPECT_EQ(error_field(cases, dir), "cases[2]");
+  try {
+    parse(cases, dir);
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("equals cases[0]"), std::string::npos) << e.what();
+  }
+  cases["cases"][2]["integrator.dt"] = 0.003;
+  EXPECT_EQ(error_field(cases, dir), "<no error>");
+}
+
 TEST(ExperimentFile, APlanBeyondTheLimitIsRefusedFromItsCounts) {
   const fs::path dir = temp_dir("plan_size");
   write_scene(dir);
