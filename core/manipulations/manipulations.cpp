@@ -1,5 +1,7 @@
 #include "core/manipulations/manipulations.hpp"
 
+#include <fmt/format.h>
+
 #include <limits>
 
 #include "core/manipulations/hold_ramp.hpp"
@@ -98,6 +100,14 @@ double Manipulator::next_key_time(double t) const {
   return std::numeric_limits<double>::infinity();
 }
 
+void Manipulator::ignore_keys_after(double t) {
+  if (!m_track) return;
+  for (; m_next_key < m_track->keys().size(); ++m_next_key) {
+    const KeyEvent& key = m_track->keys()[m_next_key];
+    ignore(t, key.key, fmt::format("pressed at scene time {:.6g} s, after the run's end", key.t));
+  }
+}
+
 void Manipulator::ignore(double t, const std::string& key, const std::string& reason) {
   ManipulationEvent e;
   e.t = t;
@@ -128,7 +138,15 @@ std::optional<Eigen::VectorXd> Manipulator::update(double t, const Eigen::Vector
   if (m_track) {
     const auto& keys = m_track->keys();
     while (m_next_key < keys.size() && keys[m_next_key].t <= t + key_time_eps) {
-      apply_key(t, keys[m_next_key].key, state, changed);
+      // A key pressed before the run starts (a negative input.time_offset selects a later
+      // window of a recording) did not happen in this run: played at t = 0 it would act on a
+      // state it was never pressed in. It is listed, not played (docs/input.md, "Time").
+      const KeyEvent& key = keys[m_next_key];
+      if (key.t < -key_time_eps)
+        ignore(t, key.key,
+               fmt::format("pressed at scene time {:.6g} s, before the run starts", key.t));
+      else
+        apply_key(t, key.key, state, changed);
       ++m_next_key;
     }
     update_holds(t, state, changed);

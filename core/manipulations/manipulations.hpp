@@ -55,6 +55,9 @@ class Manipulator {
   /// Both hands at time t against state y.
   std::vector<HandStatus> hands(double t, const Eigen::VectorXd& y) const;
   const std::vector<ManipulationEvent>& events() const { return m_events; }
+  /// At the run's end `t`: records every key not played (pressed after `t`) as ignored, so that
+  /// the run's events say which keys of the input it never reached.
+  void ignore_keys_after(double t);
   /// Takes over another manipulator's progress (hands, pending attaches, keys applied, events)
   /// on the same scene, so that a branch continues where `other` is (the restart error). The
   /// fixed particles live in the system and are copied with it.

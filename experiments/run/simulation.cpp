@@ -47,7 +47,10 @@ bool Simulation::advance(double t_until) {
   const double eps = end_tolerance(m_settings.duration);
   const double target = std::min(t_until, m_settings.duration);
   while (!m_status.ended() && m_t < target - eps) take_step();
-  if (!m_status.ended() && at_end()) end("ok", "");
+  if (!m_status.ended() && at_end()) {
+    m_manipulator.ignore_keys_after(m_t);
+    end("ok", "");
+  }
   // The observers' time is theirs, not the method's (the restart error's branches take seconds).
   m_wall_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count() -

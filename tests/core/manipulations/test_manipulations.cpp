@@ -171,6 +171,36 @@ TEST(Attach, IgnoredWithNothingHeldAndSaysWhy) {
   EXPECT_EQ(m.events()[0].reason, "attach needs a held particle and nothing is held");
 }
 
+TEST(Keys, OutsideTheRunAreListedAsIgnoredNotPlayed) {
+  // Recording times 0.1, 0.5 and 1.5 s with input.time_offset -0.3 s: scene times -0.2 (before
+  // the run), 0.2 (played) and 1.2 (after a run of 0.5 s).
+  auto s = horizontal_cloth();
+  TrackPolicy policy;
+  const HandTrack track({frame(0.1, std::nullopt, {"r"}), frame(0.5, std::nullopt, {"r"}),
+                         frame(1.5, std::nullopt, {"r"})},
+                        SensorTransform{}, TimeMap{-0.3, 1.0}, policy);
+  ManipulationParams params;
+  params.release_held = false;
+  params.release_pin = {0, 5};
+  Manipulator m(*s, &track, params);
+  Leapfrog leapfrog(*s, 1e-3);
+  SimulationSettings settings = Driver::settings(1e-3);
+  settings.duration = 0.5;
+  Simulation simulation(*s, m, leapfrog, settings, s->initial_state(0.0));
+  EXPECT_TRUE(s->constraints().is_fixed(5)) << "the key before the run did not release the pin";
+  EXPECT_EQ(simulation.run().status, "ok");
+  EXPECT_FALSE(s->constraints().is_fixed(5));
+  ASSERT_EQ(m.events().size(), 3u) << describe(m, s->cloth());
+  EXPECT_EQ(m.events()[0].type, "ignored");
+  EXPECT_EQ(m.events()[0].t, 0.0);
+  EXPECT_EQ(m.events()[0].reason, "pressed at scene time -0.2 s, before the run starts");
+  EXPECT_EQ(m.events()[1].type, "release");
+  EXPECT_NEAR(m.events()[1].t, 0.2, 1e-12);
+  EXPECT_EQ(m.events()[2].type, "ignored");
+  EXPECT_NEAR(m.events()[2].t, 0.5, 1e-12);
+  EXPECT_EQ(m.events()[2].reason, "pressed at scene time 1.2 s, after the run's end");
+}
+
 // A cloth hanging against the front of a cylinder (radius 0.1 m) at the collision threshold, its
 // top row pinned, particle 33 resting just in front of the object particle on the centre line:
 // the hand takes particle 33, presses `a` there, and the attach error is read after
