@@ -127,6 +127,45 @@ fs::file_status readable_status(const fs::path& path) {
   return status;
 }
 
+// Whether the run wrote `name` into `dir`: a regular file. A missing one is a file the run did
+// not write; anything else in its place (a folder, a named pipe, which would block the read for
+// ever) is an error naming it, not a file taken as absent.
+bool has_run_file(const fs::path& dir, const std::string& name) {
+  const fs::path path = dir / name;
+  const fs::file_status status = readable_status(path);
+  if (status.type() == fs::file_type::not_found) return false;
+  if (!fs::is_regular_file(status))
+    throw InputError(path.string(), "", "not a regular file (a run writes " + name + " as one)");
+  return true;
+}
+
+// A trace cut at a frame boundary (a full disk, a killed copy) still has whole frames: it must
+// reach the run's end, its last frame within one trace interval of the summary's sim_time, as
+// the run writes a frame at every multiple of the interval (docs/outputs.md, trace.csv). A run
+// that stopped (diverged, failed) traced nothing of its last step: one step_max more.
+void check_trace_reaches_end(const std::vector<ViewerFrame>& frames, const nlohmann::json& summary,
+                             const fs::path& file) {
+  const nlohmann::json* interval = nullptr;
+  if (summary["scene"].contains("output") && summary["scene"]["output"].is_object() &&
+      summary["scene"]["output"].contains("trace_interval"))
+    interval = &summary["scene"]["output"]["trace_interval"];
+  if (!summary.contains("sim_time") || !summary["sim_time"].is_number() || !interval ||
+      !interval->is_number())
+    return;  // a summary of another kind (the checks above need only the grid)
+  const double end = summary["sim_time"].get<double>(), step = interval->get<double>();
+  const double last = frames.empty() ? -1.0 : frames.back().t;
+  const double tolerance = 1e-9 * std::max(1.0, std::abs(end));
+  double untraced = 0.0;
+  if (summary.value("status", "") != "ok" && summary.contains("step_max") &&
+      summary["step_max"].is_number())
+    untraced = summary["step_max"].get<double>();
+  if (!(step > 0.0) || last < end - step - untraced - tolerance || last > end + tolerance)
+    throw InputError(file.string(), "",
+                     "the frames end at t = " + std::to_string(last) + " s, but the run (summary.json: "
+                     "sim_time " + std::to_string(end) + " s, output.trace_interval " +
+                     std::to_string(step) + " s) wrote frames up to its end: the file is cut");
+}
+
 }  // namespace
 
 ViewerRun read_viewer_run(const fs::path& dir) {
@@ -163,10 +202,11 @@ ViewerRun read_viewer_run(const fs::path& dir) {
   if (!run.summary.contains("events")) run.summary["events"] = nlohmann::json::array();
   if (!run.summary["events"].is_array()) throw InputError(sfile, "events", "expected an array");
 
-  if (fs::is_regular_file(dir / "trace.csv")) {
+  if (has_run_file(dir, "trace.csv")) {
     run.source = "trace.csv";
     run.frames = read_trace(dir / "trace.csv", particles);
-  } else if (fs::is_regular_file(dir / "state.csv")) {
+    check_trace_reaches_end(run.frames, run.summary, dir / "trace.csv");
+  } else if (has_run_file(dir, "state.csv")) {
     run.source = "state.csv";
     run.frames.push_back(
         read_state(dir / "state.csv", particles, run.summary.value("sim_time", 0.0)));
@@ -180,9 +220,9 @@ ViewerRun read_viewer_run(const fs::path& dir) {
     throw InputError(dir.string(), "",
                      "no cloth to show: neither trace.csv nor state.csv with finite positions "
                      "(a diverged run writes no state.csv; rerun with output.trace_interval > 0)");
-  if (fs::is_regular_file(dir / "dummy.csv")) read_dummy(dir / "dummy.csv", run);
-  if (fs::is_regular_file(dir / "hands.csv")) read_hands(dir / "hands.csv", run, particles);
-  if (fs::is_regular_file(dir / "energy.csv")) read_energy(dir / "energy.csv", run);
+  if (has_run_file(dir, "dummy.csv")) read_dummy(dir / "dummy.csv", run);
+  if (has_run_file(dir, "hands.csv")) read_hands(dir / "hands.csv", run, particles);
+  if (has_run_file(dir, "energy.csv")) read_energy(dir / "energy.csv", run);
   return run;
 }
 

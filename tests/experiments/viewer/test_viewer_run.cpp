@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "tests/support/test_support.hpp"
 #include "experiments/viewer/viewer_run.hpp"
@@ -57,6 +58,45 @@ TEST(ViewerRun, NotARunOrMalformedNamesFolderAndFile) {
                       "t,hand,available,x,y,z,candidate,distance,held\n0,right,1,0,0,0,7,0,-1\n");
   EXPECT_EQ(input_error_message([&] { read_viewer_run(bad_hands); }),
             (bad_hands / "hands.csv").string() + ": line 2: particle index out of range: 7");
+}
+
+// The tiny run's summary with output.trace_interval and sim_time set (its frames: 0 and 0.05 s).
+void write_traced_summary(const std::filesystem::path& dir, double sim_time,
+                          const std::string& status) {
+  testing::write_text(dir / "summary.json",
+                      R"({"status": ")" + status + R"(", "sim_time": )" +
+                          std::to_string(sim_time) + R"(, "step_max": 0.04, "scene": {"cloth":
+                          {"rows": 1, "cols": 2}, "output": {"trace_interval": 0.05}}})");
+}
+
+TEST(ViewerRun, ATraceCutAtAFrameBoundaryIsRefused) {
+  const auto dir = testing::tiny_run("cut_trace");
+  write_traced_summary(dir, 0.1, "ok");
+  EXPECT_EQ(read_viewer_run(dir).frames.size(), 2u) << "0.05 is one interval before the end";
+  write_traced_summary(dir, 0.11, "ok");
+  EXPECT_EQ(input_error_message([&] { read_viewer_run(dir); }),
+            (dir / "trace.csv").string() +
+                ": the frames end at t = 0.050000 s, but the run (summary.json: sim_time "
+                "0.110000 s, output.trace_interval 0.050000 s) wrote frames up to its end: the "
+                "file is cut");
+  // A run that stopped traced nothing of its last step (at most step_max).
+  write_traced_summary(dir, 0.13, "diverged");
+  EXPECT_EQ(read_viewer_run(dir).frames.size(), 2u);
+  write_traced_summary(dir, 0.15, "diverged");
+  EXPECT_NE(input_error_message([&] { read_viewer_run(dir); }).find("the file is cut"),
+            std::string::npos);
+}
+
+TEST(ViewerRun, AFolderOrNamedPipeInAFilesPlaceIsNamedNotTakenAsAbsent) {
+  const auto dir = testing::tiny_run("not_files");
+  std::filesystem::remove(dir / "trace.csv");
+  std::filesystem::create_directory(dir / "trace.csv");
+  EXPECT_EQ(input_error_message([&] { read_viewer_run(dir); }),
+            (dir / "trace.csv").string() + ": not a regular file (a run writes trace.csv as one)");
+  std::filesystem::remove(dir / "trace.csv");
+  ASSERT_EQ(mkfifo((dir / "trace.csv").c_str(), 0600), 0);  // opening it would block for ever
+  EXPECT_EQ(input_error_message([&] { read_viewer_run(dir); }),
+            (dir / "trace.csv").string() + ": not a regular file (a run writes trace.csv as one)");
 }
 
 TEST(ViewerRun, ASymbolicLinkLoopIsNamed) {
