@@ -31,12 +31,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// What a finished folder must match to count as this run: its definition, not its place.
-nlohmann::json run_identity(const RunSpec& run) {
-  nlohmann::json j = run.to_json();
-  j.erase("index");
-  j.erase("reference");
-  return j;
+// What a finished folder's run.json must hold to count as this run: its definition, not its
+// place. `planned` is the run as RunSpec::to_json (an entry of experiment.json's plan).
+nlohmann::json run_identity(nlohmann::json planned) {
+  planned.erase("index");
+  planned.erase("reference");
+  return planned;
 }
 
 // A FIFO or a device where a JSON file belongs counts as no file (opening it would wait for a
@@ -70,12 +70,23 @@ StoredResult read_result(const fs::path& dir, const std::string& id) {
   return {std::move(row), ""};
 }
 
+// The result of the plan's run `planned` (an entry of experiment.json's plan) in folder `dir`,
+// as read_result: a folder whose run.json is not the run's identity (edited, or copied from
+// another run) holds no result of it, neither for resume nor for merge.
+StoredResult finished_run(const fs::path& dir, const nlohmann::json& planned) {
+  const auto spec = read_json_if_present(dir / "run.json");
+  if (spec && *spec != run_identity(planned))
+    return {std::nullopt, (dir / "run.json").string() + ": is not this run of the plan"};
+  StoredResult result = read_result(dir, planned["id"].get<std::string>());
+  if (result.row && !spec)
+    return {std::nullopt, (dir / "run.json").string() + ": missing or unreadable"};
+  return result;
+}
+
 // The row of a run finished earlier, or nothing when it must run (again): a run that could not
 // run or crashed is retried, in case the cause (a full disk, a bug since fixed) is gone.
 std::optional<nlohmann::json> finished_row(const RunSpec& run, const fs::path& dir) {
-  const auto spec = read_json_if_present(dir / "run.json");
-  if (!spec || run_identity(run) != *spec) return std::nullopt;
-  auto row = read_result(dir, run.id).row;
+  auto row = finished_run(dir, run.to_json()).row;
   if (!row) return std::nullopt;
   const std::string status = row->value("status", "error");
   if (status == "error" || status == "crashed") return std::nullopt;
@@ -147,7 +158,7 @@ void execute_run(const RunSpec& run, const fs::path& dir) {
   try {
     fs::remove_all(dir);  // leftovers of an interrupted run would mix with the new files
     fs::create_directories(dir);
-    write_json(dir / "run.json", run_identity(run));
+    write_json(dir / "run.json", run_identity(run.to_json()));
     crash_if_asked_for_test(run.id);
     if (run.bisect) {
       row = run_bisect(run, dir, progress);
@@ -229,6 +240,15 @@ std::vector<std::string> plan_ids(const nlohmann::json& header) {
   std::vector<std::string> ids;
   for (const auto& run : header["plan"]) ids.push_back(run["id"].get<std::string>());
   return ids;
+}
+
+// The first key of the header of `source` that differs from `ours`, or "": two folders are of
+// one experiment when everything but the definition's path (shards run on other machines) is
+// the same; equal plans alone would merge another experiment's runs of the same values.
+std::string header_difference(const nlohmann::json& source, const nlohmann::json& ours) {
+  for (const char* key : {"name", "question", "metrics", "parameters", "experiment", "plan"})
+    if (source.value(key, nlohmann::json()) != ours.value(key, nlohmann::json())) return key;
+  return "";
 }
 
 }  // namespace
@@ -325,12 +345,16 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
   const std::vector<std::string> ids = plan_ids(header);
   for (const fs::path& source : sources) {
     if (fs::equivalent(source, out_dir)) continue;
-    if (plan_ids(read_header(source)) != ids)
-      throw InputError((source / "experiment.json").string(), "plan",
-                       "is not the plan of " + (out_dir / "experiment.json").string());
-    for (const std::string& id : ids) {
+    const std::string differs = header_difference(read_header(source), header);
+    if (!differs.empty())
+      throw InputError((source / "experiment.json").string(), differs,
+                       "differs from " + (out_dir / "experiment.json").string() +
+                           ": not a folder of the same experiment");
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      const std::string& id = ids[k];
       const fs::path from = source / "runs" / id, to = out_dir / "runs" / id;
-      if (!read_result(from, id).row || read_result(to, id).row) continue;
+      if (!finished_run(from, header["plan"][k]).row || finished_run(to, header["plan"][k]).row)
+        continue;
       fs::remove_all(to);
       fs::create_directories(to.parent_path());
       try {
@@ -347,7 +371,7 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
   std::vector<nlohmann::json> rows;
   std::vector<std::string> missing;
   for (std::size_t k = 0; k < ids.size(); ++k) {
-    auto [row, problem] = read_result(out_dir / "runs" / ids[k], ids[k]);
+    auto [row, problem] = finished_run(out_dir / "runs" / ids[k], header["plan"][k]);
     if (!row) {
       missing.push_back(problem.empty() ? ids[k] : ids[k] + ": " + problem);
       continue;

@@ -193,15 +193,48 @@ TEST(ExperimentRun, ResultFilesThatAreNoResultAreRerunAndNamedByMerge) {
       plan[3].id + ": " + result_file(3).string() +
           ": \"status\" is \"banana\", not one of ok, diverged, failed, error, crashed",
       plan[4].id + ": " + result_file(4).string() + ": \"id\" is \"" + plan[5].id +
-          "\", not the run's id \"" + plan[4].id + "\""};
+          "\", not the run's id \"" + plan[4].id + "\"",
+      plan[5].id + ": " + spec.string() + ": missing or unreadable"};
   EXPECT_EQ(missing, expected);
-  EXPECT_EQ(read_json(options.out_dir / "results.json")["runs"].size(), 1u);
+  EXPECT_EQ(read_json(options.out_dir / "results.json")["runs"].size(), 0u);
 
   const drape::ExperimentTally t = drape::run_experiment(experiment, options);
   EXPECT_EQ(t.skipped, 0);
   EXPECT_EQ(t.ok + t.unstable, 6);
   EXPECT_TRUE(drape::merge_results(options.out_dir, {}).empty());
   EXPECT_EQ(without_wall_time(read_json(options.out_dir / "results.json")), without_wall_time(whole));
+}
+
+// Merge takes a run only from a folder of the same experiment, and only when the run's
+// run.json is the plan's run: a definition with other metrics but the same values has the same
+// plan (ids), and an edited run.json is another run.
+TEST(ExperimentRun, MergeTakesRunsOnlyOfThisExperimentAndItsPlannedRuns) {
+  const SmallExperiment small("merge_checks");
+  drape::run_experiment(small.experiment, small.options);
+  const fs::path ours = small.dir / "merged";
+  json other_source = two_by_three();
+  other_source["metrics"] = json::array({"vibration"});
+  drape::ExperimentOptions other = small.options;
+  other.out_dir = small.dir / "other";
+  drape::run_experiment(parse(other_source, small.dir), other);
+  ASSERT_EQ(drape::merge_results(ours, {small.options.out_dir}).size(), 0u);
+  try {
+    drape::merge_results(ours, {other.out_dir});
+    ADD_FAILURE() << "merged a folder of another experiment";
+  } catch (const drape::InputError& e) {
+    EXPECT_EQ(e.field(), "metrics");
+    EXPECT_NE(std::string(e.what()).find("not a folder of the same experiment"), std::string::npos);
+  }
+  // An edited run.json: the run is no longer the plan's, in the merged folder or in a source.
+  const fs::path edited = ours / "runs" / small.plan[2].id / "run.json";
+  json spec = read_json(edited);
+  spec["scene"] = "another_scene.json";
+  std::ofstream(edited) << spec;
+  const fs::path source_spec = small.options.out_dir / "runs" / small.plan[2].id / "run.json";
+  std::ofstream(source_spec) << spec;
+  EXPECT_EQ(drape::merge_results(ours, {small.options.out_dir}),
+            std::vector<std::string>({small.plan[2].id + ": " + edited.string() +
+                                      ": is not this run of the plan"}));
 }
 
 // A run that segfaults or aborts ends its own child process only (docs/experiments.md,
