@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cmath>
 
 #include "core/scene/input_error.hpp"
@@ -47,8 +48,19 @@ int print_stability_limit(const Scene& scene) {
   const SceneSimulation run(scene);
   const Eigen::VectorXd& y = run.simulation().state();
   const Eigen::Index n3 = y.size() / 2;
+  // A large cloth takes minutes (docs/integrators.md, "Largest stable fixed step"): every 10 s
+  // the products so far go to stderr, so that the wait is visibly work, not a hang.
+  const auto start = std::chrono::steady_clock::now();
+  auto next_report = start + std::chrono::seconds(10);
+  const auto report = [&](long products) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_report) return;
+    next_report = now + std::chrono::seconds(10);
+    fmt::print(stderr, "drapelab integrators --stability: {} products with the Jacobian, {:.0f} s\n",
+               products, std::chrono::duration<double>(now - start).count());
+  };
   const ExplicitStabilityLimit limit =
-      explicit_stability_limit(run.system(), y.head(n3), y.tail(n3));
+      explicit_stability_limit(run.system(), y.head(n3), y.tail(n3), 1000, report);
   fmt::print("{}: the cloth linearised at t = 0 ({} particles)\n", scene.file, n3 / 3);
   fmt::print("  fastest mode: omega = {:.6g} rad/s ({} products with the Jacobian)\n", limit.omega,
              limit.jacobian_products);

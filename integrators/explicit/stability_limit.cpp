@@ -26,10 +26,12 @@ namespace {
 class StiffnessOperator {
  public:
   using Scalar = double;
-  StiffnessOperator(const ClothSystem& system, ConstVecRef x, ConstVecRef v)
+  StiffnessOperator(const ClothSystem& system, ConstVecRef x, ConstVecRef v,
+                    const std::function<void(long)>& after_product)
       : m_system(system),
         m_x(x),
         m_v(v),
+        m_after_product(after_product),
         m_zero(Eigen::VectorXd::Zero(x.size())),
         m_in(x.size()),
         m_out(x.size()) {}
@@ -39,11 +41,14 @@ class StiffnessOperator {
     m_in = Eigen::Map<const Eigen::VectorXd>(in, m_x.size());
     m_system.force_jacobian_times(m_x, m_v, m_in, m_zero, m_out, false);
     Eigen::Map<Eigen::VectorXd>(out, m_x.size()) = m_out / -m_system.particle_mass();
+    if (m_after_product) m_after_product(++m_products);
   }
 
  private:
   const ClothSystem& m_system;
   ConstVecRef m_x, m_v;
+  const std::function<void(long)>& m_after_product;
+  mutable long m_products = 0;
   Eigen::VectorXd m_zero;
   mutable Eigen::VectorXd m_in, m_out;
 };
@@ -56,7 +61,8 @@ constexpr Eigen::Index krylov_vectors = 30;
 }  // namespace
 
 ExplicitStabilityLimit explicit_stability_limit(const ClothSystem& system, ConstVecRef x,
-                                                ConstVecRef v, int max_restarts) {
+                                                ConstVecRef v, int max_restarts,
+                                                const std::function<void(long)>& after_product) {
   const Eigen::Index n3 = x.size();
   ExplicitStabilityLimit limit;
   const double none = std::numeric_limits<double>::infinity();
@@ -72,7 +78,7 @@ ExplicitStabilityLimit explicit_stability_limit(const ClothSystem& system, Const
   Eigen::VectorXd start(n3);
   for (Eigen::Index k = 0; k < n3; ++k) start[k] = uniform(rng);
   system.constraints().zero_fixed(start);
-  StiffnessOperator op(system, x, v);
+  StiffnessOperator op(system, x, v, after_product);
   // Arnoldi's method (Lehoucq and Sorensen's implicit restarts, as ARPACK; Spectra), for a
   // Jacobian that need not be symmetric: the paper's contact force is not a potential's.
   Spectra::GenEigsSolver<StiffnessOperator> solver(

@@ -3,6 +3,8 @@
 // at a state: the fastest mode's frequency and damping rate, and the largest step h with
 // h^2 omega^2 + 2 h c < 4 (docs/model.md, "Stability limit"). Exact where the damping is
 // proportional to the stiffness (one spring constant, at rest); an estimate elsewhere.
+#include <functional>
+
 #include "core/model/cloth_system.hpp"
 
 namespace drape {
@@ -21,8 +23,10 @@ struct ExplicitStabilityLimit {
 /// The fastest mode of `system` linearised at (x, v): the eigenvalue of largest real part of
 /// -M^-1 dF/dx (the exact Jacobian; its fixed rows and columns dropped) by Arnoldi's method with
 /// implicit restarts (Spectra), to a relative residual of 1e-10, at most `max_restarts`
-/// restarts (std::runtime_error beyond).
-ExplicitStabilityLimit explicit_stability_limit(const ClothSystem& system, ConstVecRef x,
-                                                ConstVecRef v, int max_restarts = 1000);
+/// restarts (std::runtime_error beyond). `after_product`, when given, is called with the count
+/// after every product (a large cloth takes minutes: the caller can say how far it is).
+ExplicitStabilityLimit explicit_stability_limit(
+    const ClothSystem& system, ConstVecRef x, ConstVecRef v, int max_restarts = 1000,
+    const std::function<void(long products)>& after_product = {});
 
 }  // namespace drape

@@ -132,6 +132,13 @@ TEST(StabilityLimit, TheEigensolverFindsTheFastestModeAndItsBound) {
   EXPECT_NEAR(limit.damping_rate, alpha * omega2, 1e-8 * alpha * omega2);  // c = alpha omega^2
   EXPECT_NEAR(limit.undamped, 2.0 / std::sqrt(omega2), 1e-9 * limit.undamped);
   EXPECT_NEAR(limit.damped, std::sqrt(alpha * alpha + 4.0 / omega2) - alpha, 1e-8 * limit.damped);
+  // The progress callback sees every product, counted from 1, and does not change the answer.
+  std::vector<long> counts;
+  const ExplicitStabilityLimit watched = explicit_stability_limit(
+      *s, y.head(n3), y.tail(n3), 1000, [&](long products) { counts.push_back(products); });
+  ASSERT_EQ(counts.size(), static_cast<std::size_t>(limit.jacobian_products));
+  for (std::size_t k = 0; k < counts.size(); ++k) EXPECT_EQ(counts[k], static_cast<long>(k) + 1);
+  EXPECT_EQ(watched.omega, limit.omega);
 }
 
 }  // namespace
