@@ -7,10 +7,10 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "core/scene/input_error.hpp"
-
 #include "core/input/input_config.hpp"
+#include "core/scene/input_error.hpp"
 #include "experiments/live/live_hands.hpp"
+#include "experiments/live/live_run_files.hpp"
 #include "experiments/run/frame_recorder.hpp"
 #include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_files.hpp"
@@ -234,8 +234,8 @@ void LiveSession::write_outputs(const std::string& status) {
       o->on_end(simulation);
   nlohmann::json summary = run_summary(*m_run, *m_energy);
   summary["status"] = status;
-  summary["live"] = {{"recording", "recording.jsonl"},
-                     {"replay", "scene.json"},
+  summary["live"] = {{"recording", live_run_file::recording},
+                     {"replay", live_run_file::replay_scene},
                      {"hands", m_live_hands ? "live" : "scene"}};
   if (status != "diverged" && status != "failed")
     write_state_csv(m_out_dir / "state.csv", m_run->system(), simulation.state());
@@ -245,7 +245,7 @@ void LiveSession::write_outputs(const std::string& status) {
   write_recording(scene);
   // The replay scene: the live scene, its keys inline, ending where the live run stopped.
   scene["duration"] = simulation.time();
-  write_json(m_out_dir / "scene.json", scene);
+  write_json(m_out_dir / live_run_file::replay_scene, scene);
 }
 
 // recording.jsonl: the live input in drapelab's recording format, scene times (docs/live.md).
@@ -253,7 +253,7 @@ void LiveSession::write_outputs(const std::string& status) {
 // its own input and gets the live keys added to input.events.
 void LiveSession::write_recording(nlohmann::json& scene) {
   const double end = m_run->simulation().time() + 1e-9;  // keys queued but never reached: out
-  const std::filesystem::path file = std::filesystem::absolute(m_out_dir / "recording.jsonl");
+  const std::filesystem::path file = std::filesystem::absolute(m_out_dir / live_run_file::recording);
   const InputConfig& config = m_run->input()->config;
   Recording recording{file.string(), {}, {}};
   if (m_live_hands) {

@@ -19,6 +19,12 @@ const std::vector<std::string>& experiment_file_names() {
   return names;
 }
 
+const std::vector<std::string>& experiment_run_file_names() {
+  using namespace experiment_run_file;
+  static const std::vector<std::string> names = {identity, result, progress, bisection, probes};
+  return names;
+}
+
 namespace {
 
 // The name in an experiment.json; "" when it has none or cannot be read.

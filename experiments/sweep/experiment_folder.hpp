@@ -11,6 +11,18 @@ namespace drape {
 /// The names an experiment writes at the top of its folder (files and folders), experiment.json
 /// first: clearing removes the mark of an experiment folder before the rest.
 const std::vector<std::string>& experiment_file_names();
+/// What an experiment adds to each run's folder (runs/<id>/) beside the run's own files
+/// (run_file_names): the run's identity in the plan, its result row, its progress while it runs,
+/// and a bisection's bracket and probe runs.
+namespace experiment_run_file {
+inline constexpr const char* identity = "run.json";
+inline constexpr const char* result = "result.json";
+inline constexpr const char* progress = "progress.json";
+inline constexpr const char* bisection = "bisect.json";
+inline constexpr const char* probes = "probes";
+}  // namespace experiment_run_file
+/// The names above, as a list.
+const std::vector<std::string>& experiment_run_file_names();
 /// Throws InputError naming `dir` and --out when it cannot take the experiment `name`: it is a
 /// file, cannot be created (check_run_folder), or holds a run's files or another experiment's
 /// (experiment.json with another name) and `overwrite` is false. The same experiment's folder

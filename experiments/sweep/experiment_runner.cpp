@@ -59,7 +59,7 @@ struct StoredResult {
 };
 
 StoredResult read_result(const fs::path& dir, const std::string& id) {
-  const fs::path file = dir / "result.json";
+  const fs::path file = dir / experiment_run_file::result;
   if (!fs::exists(file)) return {};
   if (const auto reason = unreadable_file_reason(file.string()))
     return {std::nullopt, file.string() + ": " + *reason};
@@ -74,12 +74,12 @@ StoredResult read_result(const fs::path& dir, const std::string& id) {
 // as read_result: a folder whose run.json is not the run's identity (edited, or copied from
 // another run) holds no result of it, neither for resume nor for merge.
 StoredResult finished_run(const fs::path& dir, const nlohmann::json& planned) {
-  const auto spec = read_json_if_present(dir / "run.json");
+  const auto spec = read_json_if_present(dir / experiment_run_file::identity);
   if (spec && *spec != run_identity(planned))
-    return {std::nullopt, (dir / "run.json").string() + ": is not this run of the plan"};
+    return {std::nullopt, (dir / experiment_run_file::identity).string() + ": is not this run of the plan"};
   StoredResult result = read_result(dir, planned["id"].get<std::string>());
   if (result.row && !spec)
-    return {std::nullopt, (dir / "run.json").string() + ": missing or unreadable"};
+    return {std::nullopt, (dir / experiment_run_file::identity).string() + ": missing or unreadable"};
   return result;
 }
 
@@ -106,7 +106,7 @@ nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, RunProgressFi
     // At most low, high and `steps` probes; fewer when the bracket is found wrong at once.
     progress.set_part(static_cast<int>(probes.size()), b.steps + 2);
     const RunOutcome o =
-        run_scene(scene, dir / "probes" / fmt::format("{:02d}", probes.size()), &progress);
+        run_scene(scene, dir / experiment_run_file::probes / fmt::format("{:02d}", probes.size()), &progress);
     const double drift = o.summary.value("energy_drift_max_rel", 0.0);
     const double rise = o.summary.value("energy_rise_max_rel", 0.0);
     const bool stable = o.status == "ok" && (!b.max_drift || drift <= *b.max_drift) &&
@@ -139,7 +139,7 @@ nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, RunProgressFi
   summary["status"] = status;
   summary["reason"] = reason;
   summary["wall_seconds"] = wall;
-  write_json(dir / "bisect.json", {{"parameter", b.parameter}, {"stable_value", stable_value},
+  write_json(dir / experiment_run_file::bisection, {{"parameter", b.parameter}, {"stable_value", stable_value},
                                           {"unstable_value", unstable_value}, {"probes", probes}});
   nlohmann::json row = result_row(run, summary);
   row["bisect_parameter"] = b.parameter;
@@ -158,7 +158,7 @@ void execute_run(const RunSpec& run, const fs::path& dir) {
   try {
     fs::remove_all(dir);  // leftovers of an interrupted run would mix with the new files
     fs::create_directories(dir);
-    write_json(dir / "run.json", run_identity(run.to_json()));
+    write_json(dir / experiment_run_file::identity, run_identity(run.to_json()));
     crash_if_asked_for_test(run.id);
     if (run.bisect) {
       row = run_bisect(run, dir, progress);
@@ -171,7 +171,7 @@ void execute_run(const RunSpec& run, const fs::path& dir) {
   }
   try {
     fs::remove(progress_file(dir));
-    write_json(dir / "result.json", row);
+    write_json(dir / experiment_run_file::result, row);
   } catch (const std::exception& e) {
     std::cerr << "drapelab: " << run.id << ": " << e.what() << "\n";
   }
@@ -181,13 +181,13 @@ void execute_run(const RunSpec& run, const fs::path& dir) {
 // its place when the child died before writing one (or exited without a result).
 nlohmann::json ended_row(const RunSpec& run, const fs::path& dir, const ChildEnd& end) {
   if (end.ok()) {
-    if (auto row = read_json_if_present(dir / "result.json")) return *row;
+    if (auto row = read_json_if_present(dir / experiment_run_file::result)) return *row;
   }
   nlohmann::json row = error_row(run, describe_child_end(end));
   row["status"] = "crashed";
   try {
     fs::create_directories(dir);
-    write_json(dir / "result.json", row);
+    write_json(dir / experiment_run_file::result, row);
   } catch (const std::exception&) {
     // The row still reaches the results table; resume reruns the run either way.
   }

@@ -5,11 +5,12 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/run/run_files.hpp"
+#include "experiments/sweep/experiment_folder.hpp"
 
 namespace drape {
 
 std::filesystem::path progress_file(const std::filesystem::path& run_dir) {
-  return run_dir / "progress.json";
+  return run_dir / experiment_run_file::progress;
 }
 
 std::optional<double> read_run_progress(const std::filesystem::path& run_dir) {

@@ -13,6 +13,7 @@
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_text.hpp"
 #include "core/scene/output_error.hpp"
+#include "experiments/live/live_run_files.hpp"
 #include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
@@ -38,15 +39,11 @@ void check_out(const fs::path& out, const std::vector<std::string>& run_dirs) {
     throw InputError(out.string(), "--out", "is a folder: name the HTML file to write");
   const fs::path target = fs::weakly_canonical(fs::absolute(out), ec);
   const std::string name = target.filename().string();
-  // An experiment's run also has these (experiment_runner.cpp, run_progress_file.hpp; a
-  // bisection's probes), and a live run its scene and hands (live_session.cpp).
-  const std::vector<std::string> other_run_files = {
-      "run.json", "result.json", "progress.json", "bisect.json", "probes", "scene.json",
-      "recording.jsonl"};
   for (const std::string& dir : run_dirs) {
     const fs::path run = fs::weakly_canonical(fs::absolute(dir), ec);
     if (target.parent_path() == run &&
-        (contains(run_file_names(), name) || contains(other_run_files, name)))
+        (contains(run_file_names(), name) || contains(experiment_run_file_names(), name) ||
+         contains(live_run_file_names(), name)))
       throw InputError(out.string(), "--out", "is the run's own " + name + " (in " + dir +
                                                   "): name another HTML file");
     const fs::path experiment = run.parent_path().parent_path();
