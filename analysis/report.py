@@ -332,27 +332,6 @@ def animate(directory, out_dir, rows, ids, frames):
     return names
 
 
-def load_complete_experiment(directory):
-    """results.json of an experiment folder whose finished runs have all their files; a
-    ValueError naming the folder or the missing files otherwise: a report of runs whose files
-    are gone would show them as if they had run."""
-    if not directory.is_dir():
-        raise ValueError(f"{directory}: {'not a folder' if directory.exists() else 'no such folder'}")
-    if not (directory / "results.json").exists():
-        kind = "a run's folder, not an experiment's: " if (directory / "summary.json").exists() else ""
-        raise ValueError(f"{directory}: {kind}no results.json (run `drapelab experiment` or `drapelab merge` first)")
-    results = runfiles.load_experiment(directory)
-    if not results.get("runs"):
-        raise ValueError(f"{directory / 'results.json'}: no runs (an experiment with an empty plan, or a "
-                         "merge before any shard finished)")
-    missing = [str(path) for row in results["runs"] for path in runfiles.missing_run_files(directory, row)]
-    if missing:
-        listed = ", ".join(missing[:5]) + (f" and {len(missing) - 5} more" if len(missing) > 5 else "")
-        raise ValueError(f"{directory}: runs listed in results.json lack their files: {listed} "
-                         "(remove such a run's result.json and rerun `drapelab experiment` to redo it)")
-    return results
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("directory", type=Path)
@@ -363,7 +342,7 @@ def main():
     parser.add_argument("--frames", type=int, default=300, help="at most this many frames an animation")
     args = parser.parse_args()
     try:
-        results = load_complete_experiment(args.directory)
+        results = runfiles.load_complete_experiment(args.directory)
         rows, windows = add_metrics(args.directory, results)
     except ValueError as e:
         # A malformed run file: its message names the file and the field; exit 2 as drapelab

@@ -170,6 +170,28 @@ def load_experiment(directory):
     return read_json(Path(directory) / "results.json")
 
 
+def load_complete_experiment(directory):
+    """results.json of an experiment folder whose finished runs have all their files; a
+    ValueError naming the folder or the missing files otherwise: a report of runs whose files
+    are gone would show them as if they had run."""
+    directory = Path(directory)
+    if not directory.is_dir():
+        raise ValueError(f"{directory}: {'not a folder' if directory.exists() else 'no such folder'}")
+    if not (directory / "results.json").exists():
+        kind = "a run's folder, not an experiment's: " if (directory / "summary.json").exists() else ""
+        raise ValueError(f"{directory}: {kind}no results.json (run `drapelab experiment` or `drapelab merge` first)")
+    results = load_experiment(directory)
+    if not results.get("runs"):
+        raise ValueError(f"{directory / 'results.json'}: no runs (an experiment with an empty plan, or a "
+                         "merge before any shard finished)")
+    missing = [str(path) for row in results["runs"] for path in missing_run_files(directory, row)]
+    if missing:
+        listed = ", ".join(missing[:5]) + (f" and {len(missing) - 5} more" if len(missing) > 5 else "")
+        raise ValueError(f"{directory}: runs listed in results.json lack their files: {listed} "
+                         "(remove such a run's result.json and rerun `drapelab experiment` to redo it)")
+    return results
+
+
 def results_table(directory):
     """The runs of an experiment's results.json as a DataFrame, one row per run, columns in the
     document's order."""
