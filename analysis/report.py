@@ -332,6 +332,20 @@ def animate(directory, out_dir, rows, ids, frames):
     return names
 
 
+def write_report(args, results, rows, windows):
+    """metrics.csv, metrics.json and report/ with its figures, animations, viewer pages and
+    report.html."""
+    write_metrics(args.directory, results, rows, windows)
+    out_dir = args.directory / "report"
+    out_dir.mkdir(exist_ok=True)
+    figures = make_figures(args.directory, out_dir, rows, results["parameters"], results.get("metrics") or ())
+    videos = animate(args.directory, out_dir, rows, args.animate, args.frames) if args.animate is not None else []
+    pages = (viewer_pages.write_pages(args.directory, out_dir, rows, args.drapelab)
+             if args.drapelab else None)
+    write_html(out_dir, results, rows, figures, videos, pages)
+    return out_dir / "report.html"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("directory", type=Path)
@@ -344,21 +358,12 @@ def main():
     try:
         results = runfiles.load_complete_experiment(args.directory)
         rows, windows = add_metrics(args.directory, results)
+        print(write_report(args, results, rows, windows))
     except ValueError as e:
-        # A malformed run file: its message names the file and the field; exit 2 as drapelab
-        # does for bad input, without a traceback.
+        # Bad input: the message names the file and the field; exit 2 as drapelab does, without
+        # a traceback. A file only a figure reads (a run's dummy.csv) is found while drawing.
         print(f"report.py: error: {e}", file=sys.stderr)
         sys.exit(2)
-    write_metrics(args.directory, results, rows, windows)
-    out_dir = args.directory / "report"
-    out_dir.mkdir(exist_ok=True)
-    figures = make_figures(args.directory, out_dir, rows, results["parameters"], results.get("metrics") or ())
-    videos = animate(args.directory, out_dir, rows, args.animate, args.frames) if args.animate is not None else []
-    pages = (viewer_pages.write_pages(args.directory, out_dir, rows, args.drapelab)
-             if args.drapelab else None)
-    write_html(out_dir, results, rows, figures, videos, pages)
-    print(out_dir / "report.html")
-
 
 if __name__ == "__main__":
     main()

@@ -1,13 +1,15 @@
 """Readers for the files a run and an experiment write (docs/outputs.md, docs/experiments.md):
 CSV files as pandas DataFrames (one column per CSV column), JSON files as dicts. Every reader
-names the file in its error when a column is missing, a cell is not a number or there are no
-rows."""
+names the file in its error when it is not a regular file (fileio.open_input), a column is
+missing, a cell is not a number or there are no rows."""
 import json
 import os
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
+
+from .fileio import input_problem, open_input
 
 TRACE_COLUMNS = ("t", "index", "x", "y", "z", "vx", "vy", "vz", "fixed", "contact", "event")
 STATE_COLUMNS = ("index", "row", "col", "x", "y", "z", "vx", "vy", "vz", "fixed")
@@ -16,10 +18,10 @@ HANDS_COLUMNS = ("t", "hand", "available", "x", "y", "z")
 
 def read_json(path):
     """The JSON value of a file."""
-    with open(path) as f:
+    with open_input(path) as f:
         try:
             return json.load(f)
-        except json.JSONDecodeError as e:
+        except (json.JSONDecodeError, UnicodeDecodeError) as e:
             raise ValueError(f"{path}: not valid JSON: {e}") from e
 
 
@@ -28,15 +30,16 @@ def read_csv(path, columns=(), text_columns=(), nan_columns=()):
     must hold numbers (`nan_columns` may also hold nan: a quantity not measured). Every line a
     run writes ends in a newline: a file that does not was cut, and its last number may be cut
     short yet still parse."""
-    with open(path, "rb") as f:
+    with open_input(path, "rb") as f:
         if f.seek(0, os.SEEK_END) and f.seek(-1, os.SEEK_END) >= 0 and f.read(1) != b"\n":
             raise ValueError(f"{path}: the last line is cut (the file does not end in a newline)")
-    try:
-        frame = pd.read_csv(path, dtype={c: str for c in text_columns})
-    except pd.errors.EmptyDataError as e:
-        raise ValueError(f"{path}: empty file") from e
-    except pd.errors.ParserError as e:
-        raise ValueError(f"{path}: {e}") from e
+        f.seek(0)
+        try:
+            frame = pd.read_csv(f, dtype={c: str for c in text_columns})
+        except pd.errors.EmptyDataError as e:
+            raise ValueError(f"{path}: empty file") from e
+        except (pd.errors.ParserError, UnicodeDecodeError) as e:
+            raise ValueError(f"{path}: {e}") from e
     missing = [c for c in columns if c not in frame.columns]
     if missing:
         raise ValueError(f"{path}: missing column(s) {', '.join(missing)} "
@@ -141,10 +144,12 @@ def read_event_trace(run):
         return None
     arrays = {}
     for name in ("t", "x", "v", "fixed", "contact"):
-        try:
-            arrays[name] = np.load(folder / f"{name}.npy")
-        except (OSError, ValueError) as e:
-            raise ValueError(f"{folder / (name + '.npy')}: {e}") from e
+        path = folder / f"{name}.npy"
+        with open_input(path, "rb") as f:
+            try:
+                arrays[name] = np.load(f)
+            except (OSError, ValueError) as e:
+                raise ValueError(f"{path}: {e}") from e
     frames = len(arrays["t"])
     for name in ("x", "v", "fixed", "contact"):
         if len(arrays[name]) != frames:
@@ -214,12 +219,20 @@ def run_dir(directory, row):
 def missing_run_files(directory, row):
     """The files a run of the results table must have and has not: result.json, then
     summary.json and energy.csv (a bisection: bisect.json); none for a run that could not run
-    or crashed, which has no files to report on."""
+    or crashed, which has no files to report on. One that is there but is not a regular file
+    (a folder, a named pipe) is a ValueError naming it: it is not missing, it is wrong."""
     if row.get("status") in ("error", "crashed"):
         return []
     run = run_dir(directory, row)
     names = ("bisect.json",) if row.get("bisect_parameter") else ("summary.json", "energy.csv")
-    return [run / name for name in ("result.json",) + names if not (run / name).is_file()]
+    missing = []
+    for path in (run / name for name in ("result.json",) + names):
+        problem = input_problem(path)
+        if problem == "no such file":
+            missing.append(path)
+        elif problem:
+            raise ValueError(f"{path}: {problem}")
+    return missing
 
 
 def scene_value(summary, path, default):

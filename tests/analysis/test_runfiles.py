@@ -27,12 +27,13 @@ class BadInputTest(unittest.TestCase):
             self.assertIn(word, text)
 
     def test_missing_file(self):
-        with self.assertRaises(FileNotFoundError) as error:
+        # A ValueError like every other bad input (the report's exit status 2), in drapelab's words.
+        with self.assertRaises(ValueError) as error:
             runfiles.read_table(self.run / "energy.csv")
-        self.assertIn("energy.csv", str(error.exception))
-        with self.assertRaises(FileNotFoundError) as error:
+        self.assertNamesFile(error, self.run / "energy.csv", "no such file")
+        with self.assertRaises(ValueError) as error:
             runfiles.read_trace(self.run / "trace.csv")
-        self.assertIn("trace.csv", str(error.exception))
+        self.assertNamesFile(error, self.run / "trace.csv", "no such file")
 
     def test_files_a_run_may_lack(self):
         # A diverged run has no state.csv, a run without a trace no trace.csv: no metric, no error.
