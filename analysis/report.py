@@ -7,9 +7,13 @@ DIR/metrics.json (the results table plus the metrics of docs/analysis.md) and DI
 report.html with the runs' provenance, its figures as PNG, SVG and PDF, a method x scene
 summary, 3-D viewer pages (report/view/, written with `PATH view`) and the full table.
 `drapelab report DIR` runs this script and passes itself as --drapelab.
+Exit status (as drapelab's): 0 done, 2 bad input (the message names the file or the option), 4 an
+output could not be written (the message names it; no half file is left, and report.html,
+written last, is not there).
 """
 import argparse
 import concurrent.futures
+import contextlib
 import csv
 import html
 import itertools
@@ -26,6 +30,7 @@ except ImportError:  # drapelab report checks for matplotlib and numpy only
     sys.exit("report.py needs pandas (Debian: apt install python3-pandas; install_dependencies.sh installs it)")
 
 from drapeanalysis import metrics, plots, runfiles, stats, viewer_pages  # noqa: E402
+from drapeanalysis.fileio import OutputError, atomic_output, output_folder  # noqa: E402
 from drapeanalysis.figure_catalogue import CAPTIONS, FIGURE_METRIC  # noqa: E402
 
 # Columns of the report's table besides the parameters; every column is in metrics.csv.
@@ -103,9 +108,9 @@ def write_metrics(directory, results, rows, windows):
     doc = {key: results[key] for key in ("name", "question", "metrics", "parameters", "plan_size")}
     doc.update(columns=columns, runs=[{k: clean(v) for k, v in row.items()} for row in rows],
                vibration_windows=windows)
-    with open(directory / "metrics.json", "w") as f:
+    with atomic_output(directory / "metrics.json") as temporary, open(temporary, "w") as f:
         json.dump(doc, f, indent=1, default=clean)
-    with open(directory / "metrics.csv", "w", newline="") as f:
+    with atomic_output(directory / "metrics.csv") as temporary, open(temporary, "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(columns)
         for row in rows:
@@ -314,7 +319,8 @@ def write_html(out_dir, results, rows, figures, videos=(), pages=None):
              "table.provenance th{text-align:left;background:#f4f4f4}div.wide{overflow-x:auto}")
     page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{html.escape(results['name'])}"
             f"</title><style>{style}</style></head><body>{''.join(parts)}</body></html>\n")
-    (out_dir / "report.html").write_text(page)
+    with atomic_output(out_dir / "report.html") as temporary:
+        temporary.write_text(page)
 
 
 def animate(directory, out_dir, rows, ids, frames):
@@ -333,11 +339,19 @@ def animate(directory, out_dir, rows, ids, frames):
 
 
 def write_report(args, results, rows, windows):
-    """metrics.csv, metrics.json and report/ with its figures, animations, viewer pages and
-    report.html."""
-    write_metrics(args.directory, results, rows, windows)
+    """metrics.csv, metrics.json and report/ with its figures, animations and viewer pages, and
+    report.html last. The previous report.html goes first: should a write fail, or a file only a
+    figure reads be malformed, the folder must not look finished."""
     out_dir = args.directory / "report"
-    out_dir.mkdir(exist_ok=True)
+    if out_dir.exists() and not out_dir.is_dir():
+        raise ValueError(f"{out_dir}: not a folder (the report writes its files there)")
+    try:
+        with contextlib.suppress(FileNotFoundError):
+            (out_dir / "report.html").unlink()
+    except OSError as e:
+        raise OutputError(f"cannot remove the previous {out_dir / 'report.html'}: {e.strerror}") from e
+    write_metrics(args.directory, results, rows, windows)
+    output_folder(out_dir)
     figures = make_figures(args.directory, out_dir, rows, results["parameters"], results.get("metrics") or ())
     videos = animate(args.directory, out_dir, rows, args.animate, args.frames) if args.animate is not None else []
     pages = (viewer_pages.write_pages(args.directory, out_dir, rows, args.drapelab)
@@ -364,6 +378,10 @@ def main():
         # a traceback. A file only a figure reads (a run's dummy.csv) is found while drawing.
         print(f"report.py: error: {e}", file=sys.stderr)
         sys.exit(2)
+    except OutputError as e:
+        # A failed write (a full disk, no permission, a file size limit): exit 4 as drapelab's.
+        print(f"report.py: error: {e}", file=sys.stderr)
+        sys.exit(4)
 
 if __name__ == "__main__":
     main()

@@ -1,13 +1,29 @@
 """An MP4 of one run's trace: the shaded front and side views of snapshots.py over time
 (matplotlib.animation with the ffmpeg writer; ffmpeg from install_dependencies.sh)."""
+import errno
+import os
+import signal
+import subprocess
+
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib import animation
 
 from . import runfiles, snapshots, style
+from .fileio import atomic_output
 
 MAX_FRAMES = 300
 FPS = 25
+
+
+def ffmpeg_failure(error):
+    """Why ffmpeg stopped (a CalledProcessError): most often it could not write the file, so the
+    report counts it as a failed write (fileio.atomic_output) and says it in ffmpeg's last words.
+    Python starts it with SIGXFSZ at its default, so a file size limit kills it."""
+    if error.returncode == -signal.SIGXFSZ:
+        return f"{os.strerror(errno.EFBIG)} (ffmpeg stopped by SIGXFSZ)"
+    words = (error.stderr or "").strip().splitlines()
+    return f"ffmpeg failed ({words[-1] if words else f'exit {error.returncode}'})"
 
 
 def animate_run(run, out_file, max_frames=MAX_FRAMES, fps=FPS):
@@ -43,6 +59,12 @@ def animate_run(run, out_file, max_frames=MAX_FRAMES, fps=FPS):
         return []
 
     movie = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
-    movie.save(out_file, writer=animation.FFMpegWriter(fps=fps, bitrate=2000), dpi=style.DPI // 2)
-    plt.close(fig)
+    try:
+        with atomic_output(out_file) as temporary:
+            try:
+                movie.save(temporary, writer=animation.FFMpegWriter(fps=fps, bitrate=2000), dpi=style.DPI // 2)
+            except subprocess.CalledProcessError as e:
+                raise OSError(ffmpeg_failure(e)) from e
+    finally:
+        plt.close(fig)
     return out_file

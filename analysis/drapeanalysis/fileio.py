@@ -1,12 +1,20 @@
-"""How the analysis opens its inputs, by drapelab's rules (README, exit status): an input must
-be a regular file.
+"""How the analysis opens its inputs and writes its outputs, by drapelab's rules (README, exit
+status): an input must be a regular file, and an output appears whole or not at all.
 
 A named pipe where a file is expected would block its reader until some writer opened it (for
 ever, in practice), and a device may never end; drapelab refuses both as "not a regular file"
 (core/scene/json_reader.cpp, unreadable_file_reason), and so does open_input, with the same
-words."""
+words. An output is written to a temporary file beside its place and renamed into it when
+complete (atomic_output), so a full disk, a quota or a file size limit leaves the old file or
+none, never a half one that looks finished."""
+import contextlib
 import os
 import stat
+from pathlib import Path
+
+
+class OutputError(Exception):
+    """An output could not be written (exit status 4); the message names the file and why."""
 
 
 def input_problem(path):
@@ -41,3 +49,36 @@ def open_input(path, mode="r"):
         raise ValueError(f"{path}: not a regular file")
     os.set_blocking(fd, True)
     return os.fdopen(fd, mode, **({} if "b" in mode else {"encoding": "utf-8"}))
+
+
+@contextlib.contextmanager
+def atomic_output(path):
+    """Yields the temporary path to write all of `path` to, beside it (the same file system, so
+    the rename is atomic); renames it to `path` when the block ends. When the block raises, the
+    temporary is removed; an OSError (a full disk, no permission, a file size limit) becomes an
+    OutputError naming `path`."""
+    path = Path(path)
+    # The suffix stays last: matplotlib and ffmpeg choose the format by it.
+    temporary = path.with_name(f".{path.stem}.tmp-{os.getpid()}{path.suffix}")
+    try:
+        yield temporary
+        os.replace(temporary, path)
+    except BaseException as e:
+        with contextlib.suppress(OSError):
+            temporary.unlink()
+        if isinstance(e, OSError):
+            raise OutputError(f"cannot write {path}: {e.strerror or e}") from e
+        raise
+
+
+def output_folder(path):
+    """Creates the folder `path` (its parent exists) unless it is there. A file in its place is a
+    ValueError (bad input, exit status 2), a folder that cannot be created an OutputError."""
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise ValueError(f"{path}: not a folder (the report writes its files there)")
+    try:
+        path.mkdir(exist_ok=True)
+    except OSError as e:
+        raise OutputError(f"cannot create folder {path}: {e.strerror or e}") from e
+    return path

@@ -1,9 +1,13 @@
-"""report.py on bad input, end to end (docs/analysis.md, "Bad input and failed writes"): an
-input that is a named pipe or a folder is exit status 2 naming the path, and never blocks the
-report."""
+"""report.py on bad input and failed writes, end to end (docs/analysis.md, "Bad input and
+failed writes"): an input that is a named pipe or a folder is exit status 2 naming the path,
+and never blocks the report; a write that fails (a file size limit, a read-only folder,
+`drapelab view` unable to write a page) is exit status 4 naming the file, and leaves no half
+file and no report.html."""
 import contextlib
 import json
 import os
+import resource
+import signal
 import tempfile
 import unittest
 from pathlib import Path
@@ -35,6 +39,12 @@ class ReportTestCase(unittest.TestCase):
         self.assertIn(message, done.stderr)
         self.assertNotIn("Traceback", done.stderr)
         return done
+
+    def only_figures(self, *metrics):
+        """The experiment's `metrics` (docs/experiments.md) set to ask for these figures only
+        ("stable_dt": none this data has), for a quicker report."""
+        results = json.loads((self.directory / "results.json").read_text())
+        (self.directory / "results.json").write_text(json.dumps({**results, "metrics": list(metrics)}))
 
     def assertNothingWritten(self):
         self.assertFalse((self.directory / "metrics.csv").exists())
@@ -90,6 +100,73 @@ class InputNotARegularFileTest(ReportTestCase):
             with self.subTest(name), replaced(path, os.mkdir):
                 self.report(status=2, message=f"{path}: is a directory, not a file")
                 self.assertNothingWritten()
+
+
+def file_size_limit(size):
+    """A preexec_fn: writes past `size` bytes fail with EFBIG (SIGXFSZ ignored, as `ulimit -f`
+    under a shell that ignores it; Python ignores it too)."""
+    def limit():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (size, size))
+    return limit
+
+
+class FailedWriteTest(ReportTestCase):
+    """Defect 2: a write that failed left a half file (metrics, figures, the page) and a folder
+    that looked finished; a file in place of the report's folder was a traceback."""
+
+    def test_a_file_size_limit_at_the_metrics(self):
+        # metrics.json is about 9 kB.
+        self.report(status=4, message=f"cannot write {self.directory / 'metrics.json'}: File too large",
+                    preexec_fn=file_size_limit(4000))
+        self.assertFalse((self.directory / "metrics.json").exists())
+        self.assertNoReportPage()
+
+    def test_a_file_size_limit_at_a_figure_removes_the_previous_report_page(self):
+        # The metrics fit in 40 kB, the first figure's PNG (about 60 kB) does not.
+        (self.directory / "report").mkdir()
+        (self.directory / "report" / "report.html").write_text("a previous report")
+        done = self.report(status=4, message=f"cannot write {self.directory / 'report' / 'energy_vs_time.png'}: "
+                           "File too large", preexec_fn=file_size_limit(40000))
+        self.assertFalse((self.directory / "report" / "energy_vs_time.png").exists(), done.stderr)
+        self.assertNoReportPage()
+
+    def test_an_animation_cut_by_a_file_size_limit(self):
+        # No figures: the metrics fit in 12 kB, an MP4 of 20 frames (about 25 kB) does not.
+        # ffmpeg gets SIGXFSZ (Python starts it with the default action).
+        self.only_figures("stable_dt")
+        out = self.directory / "report" / f"{self.runs[0]['id']}.mp4"
+        self.report("--animate", self.runs[0]["id"], "--frames", 20, status=4,
+                    message=f"cannot write {out}: File too large", preexec_fn=file_size_limit(12000))
+        self.assertFalse(out.exists())
+        self.assertNoReportPage()
+
+    def test_a_file_where_the_report_folder_goes(self):
+        # Bad input, not a failed write: exit 2, before anything is written.
+        (self.directory / "report").write_text("x")
+        self.report(status=2, message=f"{self.directory / 'report'}: not a folder")
+        self.assertFalse((self.directory / "metrics.csv").exists())
+
+    @unittest.skipIf(os.geteuid() == 0, "root writes into a read-only folder")
+    def test_a_read_only_experiment_folder(self):
+        self.directory.chmod(0o555)
+        try:
+            self.report(status=4, message=f"cannot write {self.directory / 'metrics.json'}: Permission denied")
+        finally:
+            self.directory.chmod(0o755)
+        self.assertNothingWritten()
+
+    def test_a_viewer_page_drapelab_could_not_write(self):
+        # `drapelab view` says exit 4 for a page it could not write; the report must not list
+        # that run as merely having no page.
+        fake = Path(self._tmp.name) / "drapelab"
+        fake.write_text('#!/bin/sh\necho "drapelab: cannot write $4: No space left on device" >&2\nexit 4\n')
+        fake.chmod(0o755)
+        self.only_figures("stable_dt")
+        page = self.directory / "report" / "view" / f"{self.runs[0]['id']}.html"
+        self.report("--drapelab", fake, status=4,
+                    message=f"{page}: drapelab view failed (drapelab: cannot write {page}: No space left on device)")
+        self.assertNoReportPage()
 
 
 if __name__ == "__main__":
