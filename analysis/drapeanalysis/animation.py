@@ -16,6 +16,11 @@ MAX_FRAMES = 300
 FPS = 25
 
 
+def available():
+    """True when matplotlib finds the ffmpeg program it writes MP4 with."""
+    return animation.FFMpegWriter.isAvailable()
+
+
 def ffmpeg_failure(error):
     """Why ffmpeg stopped (a CalledProcessError): most often it could not write the file, so the
     report counts it as a failed write (fileio.atomic_output) and says it in ffmpeg's last words.

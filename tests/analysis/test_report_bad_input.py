@@ -1,9 +1,10 @@
 """report.py on bad input and failed writes, end to end (docs/analysis.md, "Bad input and
-failed writes"): an input that is a named pipe or a folder is exit status 2 naming the path,
-and never blocks the report; a write that fails (a file size limit, a read-only folder,
-`drapelab view` unable to write a page) is exit status 4 naming the file, and leaves no half
-file and no report.html."""
+failed writes"): an input that is a named pipe or a folder, and an option out of its range, are
+exit status 2 naming the path or the option, and never block the report; a write that fails (a
+file size limit, a read-only folder, `drapelab view` unable to write a page) is exit status 4
+naming the file, and leaves no half file and no report.html."""
 import contextlib
+import io
 import json
 import os
 import resource
@@ -16,6 +17,7 @@ import numpy as np
 from PIL import Image
 
 import runfolder
+from drapeanalysis import report_options
 
 
 class ReportTestCase(unittest.TestCase):
@@ -167,6 +169,63 @@ class FailedWriteTest(ReportTestCase):
         self.report("--drapelab", fake, status=4,
                     message=f"{page}: drapelab view failed (drapelab: cannot write {page}: No space left on device)")
         self.assertNoReportPage()
+
+
+class OptionRangeTest(ReportTestCase):
+    """Defect 3: --frames took any integer; --animate ids that name nothing, or runs without a
+    trace, were skipped silently or exited 1 after the report was written."""
+
+    def test_frames_out_of_range(self):
+        for value in ("-1", "0", "1", "100001", "1000000000000", "nan", "inf", "2.5", "1e3", ""):
+            with self.subTest(value), contextlib.redirect_stderr(io.StringIO()) as stderr:
+                with self.assertRaises(SystemExit) as done:
+                    report_options.parse("", [str(self.directory), "--animate", f"--frames={value}"])
+                self.assertEqual(done.exception.code, 2)
+                self.assertIn(f"argument --frames: expected a whole number from 2 to 100000, got {value!r}",
+                              stderr.getvalue())
+        # The same end to end, before anything is written.
+        self.report("--animate", "--frames", "-1", status=2,
+                    message="argument --frames: expected a whole number from 2 to 100000, got '-1'")
+        self.assertNothingWritten()
+        self.assertEqual(report_options.parse("", [str(self.directory), "--animate", "--frames", "2"]).frames, 2)
+        self.assertEqual(report_options.parse("", [str(self.directory), "--animate"]).frames, 300)
+
+    def test_frames_without_animate(self):
+        self.report("--frames", "10", status=2, message="--frames: only with --animate")
+        self.assertNothingWritten()
+
+    def test_animate_names_no_run_or_a_run_without_a_trace(self):
+        self.report("--animate", "nope", self.runs[0]["id"], status=2,
+                    message=f"--animate: no run nope in {self.directory / 'results.json'}")
+        self.assertNothingWritten()
+        (self.run / "trace.csv").unlink()
+        self.report("--animate", self.runs[0]["id"], status=2,
+                    message=f"--animate: run {self.runs[0]['id']} has no trace.csv")
+        self.assertNothingWritten()
+        for run in self.runs[1:]:
+            (self.directory / run["run_dir"] / "trace.csv").unlink()
+        self.report("--animate", status=2, message="--animate: no run has a trace.csv")
+        self.assertNothingWritten()
+
+    def test_drapelab_that_is_no_program(self):
+        not_a_program = self.directory / "results.json"
+        for path, words in ((self.directory / "nope", "no such file"), (not_a_program, "not executable"),
+                            (self.directory, "is a directory, not a file")):
+            with self.subTest(str(path)):
+                self.report("--drapelab", path, status=2, message=f"--drapelab {path}: {words}")
+                self.assertNothingWritten()
+
+    def test_animate_without_ffmpeg(self):
+        # Not bad input but a missing program: exit 1 as `drapelab report` without its Python.
+        no_programs = Path(self._tmp.name) / "bin"
+        no_programs.mkdir()
+        self.report("--animate", status=1, message="--animate needs ffmpeg", env={"PATH": str(no_programs)})
+        self.assertNothingWritten()
+
+    def test_an_empty_folder_name(self):
+        done = runfolder.run_report("")
+        self.assertEqual(done.returncode, 2, done.stderr)
+        self.assertIn("an empty path", done.stderr)
 
 
 if __name__ == "__main__":
