@@ -35,11 +35,9 @@ def animate_run(run, out_file, max_frames=MAX_FRAMES, fps=FPS):
     """Writes out_file (MP4): the run's trace frames, evenly thinned to at most max_frames, front
     and side views side by side, played at fps frames a second. Returns out_file."""
     summary = runfiles.read_summary(run)
-    rows, cols = (runfiles.scene_value(summary, f"cloth.{k}", 0) for k in ("rows", "cols"))
     trace = runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))
-    dummy = runfiles.read_table(run / "dummy.csv") if (run / "dummy.csv").exists() else None
-    objects = snapshots.object_quads(dummy) if dummy is not None else None
-    points = runfiles.positions(dummy) if dummy is not None and objects is None else None
+    rows, cols = snapshots.cloth_grid(run, summary, trace)
+    objects, points = snapshots.object_surface(run)
     frames = np.unique(np.linspace(0, len(trace["t"]) - 1, min(max_frames, len(trace["t"]))).astype(int))
     all_x = trace["x"].reshape(-1, 3)
     lo, hi = all_x.min(axis=0) - 0.05, all_x.max(axis=0) + 0.05

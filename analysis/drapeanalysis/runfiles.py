@@ -3,6 +3,7 @@ CSV files as pandas DataFrames (one column per CSV column), JSON files as dicts.
 names the file in its error when it is not a regular file (fileio.open_input), a column is
 missing, a cell is not a number or there are no rows."""
 import json
+import math
 import os
 from pathlib import Path
 
@@ -83,19 +84,26 @@ def read_run_energy(run, summary):
     `sim_time` (summary.json) by more than an output interval and a step: a cut file, whose
     metrics would describe the start of the run only. That much is allowed because a diverged
     or failed run does not write its last step's row."""
-    path = Path(run) / "energy.csv"
+    path, summary_path = Path(run) / "energy.csv", Path(run) / "summary.json"
     energy = read_energy(path)
     if "sim_time" not in summary:
-        raise ValueError(f"{Path(run) / 'summary.json'}: no sim_time")
-    end = float(summary["sim_time"])
-    interval = float(scene_value(summary, "output.energy_interval", 0.01))
-    slack = interval + float(summary.get("step_max", 0.0)) + 1e-9 * max(abs(end), 1.0)
+        raise ValueError(f"{summary_path}: no sim_time")
+    end = finite_number(summary["sim_time"], summary_path, "sim_time")
+    interval = finite_number(scene_value(summary, "output.energy_interval", 0.01), summary_path,
+                             "scene.output.energy_interval")
+    slack = (interval + finite_number(summary.get("step_max", 0.0), summary_path, "step_max")
+             + 1e-9 * max(abs(end), 1.0))
     last = float(energy["t"].iloc[-1])
     if last < end - slack:
         raise ValueError(f"{path}: the rows end at t = {last:g} s, before the run's sim_time = {end:g} s "
                          f"in summary.json (more than output.energy_interval = {interval:g} s and a step): "
                          "the file is cut")
     return energy
+
+
+def read_dummy(path):
+    """dummy.csv: index, section, point, x, y, z, nx, ny, nz (the drawings need the sections)."""
+    return read_csv(path, ("section", "point", "x", "y", "z"))
 
 
 def read_state(path):
@@ -170,9 +178,68 @@ def positions(frame):
     return frame[["x", "y", "z"]].to_numpy(dtype=float)
 
 
+# The fields of results.json the analysis reads (docs/experiments.md, "The table"): their JSON
+# type and, for a list, its items' type. Other fields are let be: rows carry any swept key.
+RESULTS_FIELDS = {"name": (str, None), "question": (str, None), "metrics": (list, str),
+                  "parameters": (list, str), "plan_size": (int, None), "columns": (list, str),
+                  "runs": (list, dict)}
+JSON_TYPES = {str: "a string", int: "an integer", float: "a number", list: "a list", dict: "an object",
+              bool: "true or false", type(None): "null"}
+
+
+def json_type(value):
+    """The JSON name of a value's type, for messages."""
+    return JSON_TYPES.get(type(value), type(value).__name__)
+
+
+def shown(value, limit=60):
+    """A JSON value as a message quotes it, cut at `limit` characters."""
+    text = json.dumps(value)
+    return text if len(text) <= limit else text[:limit] + "..."
+
+
+def finite_number(value, path, field):
+    """value as a float; a ValueError naming the file and the field when it is not a finite
+    number (null, a string, true, nan)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"{path}: {field}: expected a finite number, got {shown(value)}")
+    return float(value)
+
+
+def check_results(doc, path):
+    """A ValueError naming results.json and the field when the document lacks a field the report
+    reads or holds the wrong type there, or when a run's id is empty, repeated or would name a
+    file outside the report's folder (RUN_ID.mp4, view/RUN_ID.html)."""
+    if not isinstance(doc, dict):
+        raise ValueError(f"{path}: expected a JSON object, got {json_type(doc)}")
+    for key, (kind, item) in RESULTS_FIELDS.items():
+        if key not in doc:
+            raise ValueError(f"{path}: {key}: missing")
+        value = doc[key]
+        wrong = next((v for v in value if not isinstance(v, item)), None) if isinstance(value, list) and item else None
+        if not isinstance(value, kind) or isinstance(value, bool) or wrong is not None:
+            what = JSON_TYPES[kind] + (f" of {JSON_TYPES[item].split(' ', 1)[1]}s" if item else "")
+            raise ValueError(f"{path}: {key}: expected {what}, got {shown(value if wrong is None else wrong)}")
+    seen = set()
+    for k, run in enumerate(doc["runs"]):
+        for key in ("id", "run_dir"):
+            if not isinstance(run.get(key), str) or not run[key]:
+                raise ValueError(f"{path}: runs[{k}].{key}: expected a non-empty string, got {shown(run.get(key))}")
+        if "/" in run["id"] or run["id"] in (".", ".."):
+            raise ValueError(f"{path}: runs[{k}].id: {run['id']!r} is not a file name (it names the run's "
+                             "animation and viewer page)")
+        if run["id"] in seen:
+            raise ValueError(f"{path}: runs[{k}].id: {run['id']!r} repeats an earlier run's id")
+        seen.add(run["id"])
+
+
 def load_experiment(directory):
-    """The results document (results.json) of an experiment folder, as a dict."""
-    return read_json(Path(directory) / "results.json")
+    """The results document (results.json) of an experiment folder, as a dict, checked
+    (check_results)."""
+    path = Path(directory) / "results.json"
+    doc = read_json(path)
+    check_results(doc, path)
+    return doc
 
 
 def load_complete_experiment(directory):
@@ -207,8 +274,23 @@ def results_table(directory):
 
 
 def read_summary(run):
-    """A run's summary.json as a dict."""
-    return read_json(Path(run) / "summary.json")
+    """A run's summary.json as a dict; a ValueError naming the file and the field when it is not
+    an object, or its events (optional) are not a list of objects each with a type (a string)
+    and a time `t` (a finite number), which every event of docs/outputs.md has."""
+    path = Path(run) / "summary.json"
+    doc = read_json(path)
+    if not isinstance(doc, dict):
+        raise ValueError(f"{path}: expected a JSON object, got {json_type(doc)}")
+    events = doc.get("events", [])
+    if not isinstance(events, list):
+        raise ValueError(f"{path}: events: expected a list, got {json_type(events)}")
+    for k, event in enumerate(events):
+        if not isinstance(event, dict):
+            raise ValueError(f"{path}: events[{k}]: expected an object, got {json_type(event)}")
+        if not isinstance(event.get("type"), str):
+            raise ValueError(f"{path}: events[{k}].type: expected a string, got {shown(event.get('type'))}")
+        finite_number(event.get("t"), path, f"events[{k}].t")
+    return doc
 
 
 def run_dir(directory, row):

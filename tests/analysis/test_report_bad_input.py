@@ -1,8 +1,8 @@
-"""report.py on bad input and failed writes, end to end (docs/analysis.md, "Bad input and
-failed writes"): an input that is a named pipe or a folder, and an option out of its range, are
-exit status 2 naming the path or the option, and never block the report; a write that fails (a
-file size limit, a read-only folder, `drapelab view` unable to write a page) is exit status 4
-naming the file, and leaves no half file and no report.html."""
+"""report.py on bad input and failed writes, end to end (docs/analysis.md, "Bad input"): an
+input that is a named pipe or a folder, an option out of its range and a malformed document are
+exit status 2 naming the path or the option; a write that fails (a file size limit, a read-only
+folder, `drapelab view` unable to write a page) is exit status 4 naming the file, and leaves no
+half file and no report.html."""
 import contextlib
 import io
 import json
@@ -226,6 +226,40 @@ class OptionRangeTest(ReportTestCase):
         done = runfolder.run_report("")
         self.assertEqual(done.returncode, 2, done.stderr)
         self.assertIn("an empty path", done.stderr)
+
+
+class MalformedDocumentTest(ReportTestCase):
+    """A document the report reads without the field it needs, or with a value out of range,
+    was a traceback (KeyError, TypeError, numpy's reshape)."""
+
+    def test_results_json_without_a_field(self):
+        results = json.loads((self.directory / "results.json").read_text())
+        del results["parameters"]
+        (self.directory / "results.json").write_text(json.dumps(results))
+        self.report(status=2, message=f"{self.directory / 'results.json'}: parameters: missing")
+        self.assertNothingWritten()
+
+    def test_summary_json_with_a_bad_event_time(self):
+        summary = json.loads((self.run / "summary.json").read_text())
+        summary["events"][1]["t"] = None
+        (self.run / "summary.json").write_text(json.dumps(summary))
+        self.report(status=2, message=f"{self.run / 'summary.json'}: events[1].t: expected a finite number, got null")
+        self.assertNothingWritten()
+
+    def test_a_cloth_grid_that_is_not_the_trace(self):
+        summary = json.loads((self.run / "summary.json").read_text())
+        summary["scene"]["cloth"]["rows"] = 5
+        (self.run / "summary.json").write_text(json.dumps(summary))
+        self.only_figures("snapshots")
+        self.report(status=2, message=f"{self.run / 'summary.json'}: scene.cloth.rows x cols = 5 x 4, but "
+                                      f"{self.run / 'trace.csv'} has 12 particles a frame")
+        self.assertNoReportPage()
+
+    def test_a_dummy_csv_without_its_sections(self):
+        runfolder.write_csv(self.run / "dummy.csv", "index,x,y,z", [(0, 0.0, 1.0, 0.0)])
+        self.only_figures("snapshots")
+        self.report(status=2, message=f"{self.run / 'dummy.csv'}: missing column(s) section, point")
+        self.assertNoReportPage()
 
 
 if __name__ == "__main__":
