@@ -7,9 +7,12 @@ DIR/metrics.json (the results table plus the metrics of docs/analysis.md) and DI
 report.html with the runs' provenance, its figures as PNG, SVG and PDF, a method x scene
 summary, 3-D viewer pages (report/view/, written with `PATH view`) and the full table.
 `drapelab report DIR` runs this script and passes itself as --drapelab.
+Exit status (as drapelab's): 0 done, 1 ffmpeg missing for --animate, 2 bad input (the message
+names the file or the option), 4 an output could not be written (the message names it; no half
+file is left, and report.html, written last, is not there).
 """
-import argparse
 import concurrent.futures
+import contextlib
 import csv
 import html
 import itertools
@@ -18,14 +21,14 @@ import math
 import os
 import sys
 from collections import Counter
-from pathlib import Path
 
 try:
     import pandas as pd
 except ImportError:  # drapelab report checks for matplotlib and numpy only
     sys.exit("report.py needs pandas (Debian: apt install python3-pandas; install_dependencies.sh installs it)")
 
-from drapeanalysis import metrics, plots, runfiles, stats, viewer_pages  # noqa: E402
+from drapeanalysis import metrics, plots, report_options, runfiles, stats, viewer_pages  # noqa: E402
+from drapeanalysis.fileio import OutputError, atomic_output, output_folder  # noqa: E402
 from drapeanalysis.figure_catalogue import CAPTIONS, FIGURE_METRIC  # noqa: E402
 
 # Columns of the report's table besides the parameters; every column is in metrics.csv.
@@ -103,9 +106,9 @@ def write_metrics(directory, results, rows, windows):
     doc = {key: results[key] for key in ("name", "question", "metrics", "parameters", "plan_size")}
     doc.update(columns=columns, runs=[{k: clean(v) for k, v in row.items()} for row in rows],
                vibration_windows=windows)
-    with open(directory / "metrics.json", "w") as f:
+    with atomic_output(directory / "metrics.json") as temporary, open(temporary, "w") as f:
         json.dump(doc, f, indent=1, default=clean)
-    with open(directory / "metrics.csv", "w", newline="") as f:
+    with atomic_output(directory / "metrics.csv") as temporary, open(temporary, "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(columns)
         for row in rows:
@@ -314,71 +317,67 @@ def write_html(out_dir, results, rows, figures, videos=(), pages=None):
              "table.provenance th{text-align:left;background:#f4f4f4}div.wide{overflow-x:auto}")
     page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{html.escape(results['name'])}"
             f"</title><style>{style}</style></head><body>{''.join(parts)}</body></html>\n")
-    (out_dir / "report.html").write_text(page)
+    with atomic_output(out_dir / "report.html") as temporary:
+        temporary.write_text(page)
 
 
-def animate(directory, out_dir, rows, ids, frames):
-    """An MP4 per run named in ids (every run with a trace when ids is empty): the file names."""
+def animate(directory, out_dir, rows, frames):
+    """An MP4 per row (report_options.animated_runs): the file names."""
     from drapeanalysis import animation  # needs ffmpeg only when asked for
-    unknown = set(ids) - {row["id"] for row in rows}
-    if unknown:
-        sys.exit(f"{directory}: --animate: no run {', '.join(sorted(unknown))}")
     names = []
     for row in rows:
-        run = runfiles.run_dir(directory, row)
-        if (not ids or row["id"] in ids) and (run / "trace.csv").exists():
-            names.append(f"{row['id']}.mp4")
-            animation.animate_run(run, out_dir / names[-1], max_frames=frames)
+        names.append(f"{row['id']}.mp4")
+        animation.animate_run(runfiles.run_dir(directory, row), out_dir / names[-1], max_frames=frames)
     return names
 
 
-def load_complete_experiment(directory):
-    """results.json of an experiment folder whose finished runs have all their files; a
-    ValueError naming the folder or the missing files otherwise: a report of runs whose files
-    are gone would show them as if they had run."""
-    if not directory.is_dir():
-        raise ValueError(f"{directory}: {'not a folder' if directory.exists() else 'no such folder'}")
-    if not (directory / "results.json").exists():
-        kind = "a run's folder, not an experiment's: " if (directory / "summary.json").exists() else ""
-        raise ValueError(f"{directory}: {kind}no results.json (run `drapelab experiment` or `drapelab merge` first)")
-    results = runfiles.load_experiment(directory)
-    if not results.get("runs"):
-        raise ValueError(f"{directory / 'results.json'}: no runs (an experiment with an empty plan, or a "
-                         "merge before any shard finished)")
-    missing = [str(path) for row in results["runs"] for path in runfiles.missing_run_files(directory, row)]
-    if missing:
-        listed = ", ".join(missing[:5]) + (f" and {len(missing) - 5} more" if len(missing) > 5 else "")
-        raise ValueError(f"{directory}: runs listed in results.json lack their files: {listed} "
-                         "(remove such a run's result.json and rerun `drapelab experiment` to redo it)")
-    return results
-
-
-def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("directory", type=Path)
-    parser.add_argument("--drapelab", metavar="PATH",
-                        help="the drapelab program that writes the 3-D viewer pages (`drapelab report` passes itself)")
-    parser.add_argument("--animate", nargs="*", metavar="RUN_ID",
-                        help="also write an MP4 of these runs (every run when no id is given); needs ffmpeg")
-    parser.add_argument("--frames", type=int, default=300, help="at most this many frames an animation")
-    args = parser.parse_args()
-    try:
-        results = load_complete_experiment(args.directory)
-        rows, windows = add_metrics(args.directory, results)
-    except ValueError as e:
-        # A malformed run file: its message names the file and the field; exit 2 as drapelab
-        # does for bad input, without a traceback.
-        print(f"report.py: error: {e}", file=sys.stderr)
-        sys.exit(2)
-    write_metrics(args.directory, results, rows, windows)
+def write_report(args, results, rows, windows, animated):
+    """metrics.csv, metrics.json and report/ with its figures, animations and viewer pages, and
+    report.html last. The previous report.html goes first: should a write fail, or a file only a
+    figure reads be malformed, the folder must not look finished."""
     out_dir = args.directory / "report"
-    out_dir.mkdir(exist_ok=True)
+    if out_dir.exists() and not out_dir.is_dir():
+        raise ValueError(f"{out_dir}: not a folder (the report writes its files there)")
+    try:
+        with contextlib.suppress(FileNotFoundError):
+            (out_dir / "report.html").unlink()
+    except OSError as e:
+        raise OutputError(f"cannot remove the previous {out_dir / 'report.html'}: {e.strerror}") from e
+    write_metrics(args.directory, results, rows, windows)
+    output_folder(out_dir)
     figures = make_figures(args.directory, out_dir, rows, results["parameters"], results.get("metrics") or ())
-    videos = animate(args.directory, out_dir, rows, args.animate, args.frames) if args.animate is not None else []
+    videos = animate(args.directory, out_dir, animated, args.frames) if animated else []
     pages = (viewer_pages.write_pages(args.directory, out_dir, rows, args.drapelab)
              if args.drapelab else None)
     write_html(out_dir, results, rows, figures, videos, pages)
-    print(out_dir / "report.html")
+    return out_dir / "report.html"
+
+
+def main():
+    args = report_options.parse(__doc__)
+    if args.animate is not None:
+        from drapeanalysis import animation
+        if not animation.available():
+            # Not bad input but a missing program: exit 1, as `drapelab report` without matplotlib.
+            sys.exit("report.py: error: --animate needs ffmpeg (Debian: apt install ffmpeg)")
+    try:
+        if args.drapelab is not None:
+            report_options.check_drapelab(args.drapelab)
+        results = runfiles.load_complete_experiment(args.directory)
+        animated = (report_options.animated_runs(args.directory, results["runs"], args.animate)
+                    if args.animate is not None else [])
+        rows, windows = add_metrics(args.directory, results)
+        print(write_report(args, results, rows, windows, animated))
+    except ValueError as e:
+        # Bad input: the message names the file and the field, or the option; exit 2 as drapelab
+        # does, without a traceback. A file only a figure reads (a run's dummy.csv) is found
+        # while drawing.
+        print(f"report.py: error: {e}", file=sys.stderr)
+        sys.exit(2)
+    except OutputError as e:
+        # A failed write (a full disk, no permission, a file size limit): exit 4 as drapelab's.
+        print(f"report.py: error: {e}", file=sys.stderr)
+        sys.exit(4)
 
 
 if __name__ == "__main__":

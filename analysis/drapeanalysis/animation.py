@@ -1,24 +1,43 @@
 """An MP4 of one run's trace: the shaded front and side views of snapshots.py over time
 (matplotlib.animation with the ffmpeg writer; ffmpeg from install_dependencies.sh)."""
+import errno
+import os
+import signal
+import subprocess
+
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib import animation
 
 from . import runfiles, snapshots, style
+from .fileio import atomic_output
 
 MAX_FRAMES = 300
 FPS = 25
+
+
+def available():
+    """True when matplotlib finds the ffmpeg program it writes MP4 with."""
+    return animation.FFMpegWriter.isAvailable()
+
+
+def ffmpeg_failure(error):
+    """Why ffmpeg stopped (a CalledProcessError): most often it could not write the file, so the
+    report counts it as a failed write (fileio.atomic_output) and says it in ffmpeg's last words.
+    Python starts it with SIGXFSZ at its default, so a file size limit kills it."""
+    if error.returncode == -signal.SIGXFSZ:
+        return f"{os.strerror(errno.EFBIG)} (ffmpeg stopped by SIGXFSZ)"
+    words = (error.stderr or "").strip().splitlines()
+    return f"ffmpeg failed ({words[-1] if words else f'exit {error.returncode}'})"
 
 
 def animate_run(run, out_file, max_frames=MAX_FRAMES, fps=FPS):
     """Writes out_file (MP4): the run's trace frames, evenly thinned to at most max_frames, front
     and side views side by side, played at fps frames a second. Returns out_file."""
     summary = runfiles.read_summary(run)
-    rows, cols = (runfiles.scene_value(summary, f"cloth.{k}", 0) for k in ("rows", "cols"))
     trace = runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))
-    dummy = runfiles.read_table(run / "dummy.csv") if (run / "dummy.csv").exists() else None
-    objects = snapshots.object_quads(dummy) if dummy is not None else None
-    points = runfiles.positions(dummy) if dummy is not None and objects is None else None
+    rows, cols = snapshots.cloth_grid(run, summary, trace)
+    objects, points = snapshots.object_surface(run)
     frames = np.unique(np.linspace(0, len(trace["t"]) - 1, min(max_frames, len(trace["t"]))).astype(int))
     all_x = trace["x"].reshape(-1, 3)
     lo, hi = all_x.min(axis=0) - 0.05, all_x.max(axis=0) + 0.05
@@ -43,6 +62,12 @@ def animate_run(run, out_file, max_frames=MAX_FRAMES, fps=FPS):
         return []
 
     movie = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
-    movie.save(out_file, writer=animation.FFMpegWriter(fps=fps, bitrate=2000), dpi=style.DPI // 2)
-    plt.close(fig)
+    try:
+        with atomic_output(out_file) as temporary:
+            try:
+                movie.save(temporary, writer=animation.FFMpegWriter(fps=fps, bitrate=2000), dpi=style.DPI // 2)
+            except subprocess.CalledProcessError as e:
+                raise OSError(ffmpeg_failure(e)) from e
+    finally:
+        plt.close(fig)
     return out_file

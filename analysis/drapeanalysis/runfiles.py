@@ -1,13 +1,16 @@
 """Readers for the files a run and an experiment write (docs/outputs.md, docs/experiments.md):
 CSV files as pandas DataFrames (one column per CSV column), JSON files as dicts. Every reader
-names the file in its error when a column is missing, a cell is not a number or there are no
-rows."""
+names the file in its error when it is not a regular file (fileio.open_input), a column is
+missing, a cell is not a number or there are no rows."""
 import json
+import math
 import os
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
+
+from .fileio import input_problem, open_input
 
 TRACE_COLUMNS = ("t", "index", "x", "y", "z", "vx", "vy", "vz", "fixed", "contact", "event")
 STATE_COLUMNS = ("index", "row", "col", "x", "y", "z", "vx", "vy", "vz", "fixed")
@@ -16,10 +19,10 @@ HANDS_COLUMNS = ("t", "hand", "available", "x", "y", "z")
 
 def read_json(path):
     """The JSON value of a file."""
-    with open(path) as f:
+    with open_input(path) as f:
         try:
             return json.load(f)
-        except json.JSONDecodeError as e:
+        except (json.JSONDecodeError, UnicodeDecodeError) as e:
             raise ValueError(f"{path}: not valid JSON: {e}") from e
 
 
@@ -28,15 +31,16 @@ def read_csv(path, columns=(), text_columns=(), nan_columns=()):
     must hold numbers (`nan_columns` may also hold nan: a quantity not measured). Every line a
     run writes ends in a newline: a file that does not was cut, and its last number may be cut
     short yet still parse."""
-    with open(path, "rb") as f:
+    with open_input(path, "rb") as f:
         if f.seek(0, os.SEEK_END) and f.seek(-1, os.SEEK_END) >= 0 and f.read(1) != b"\n":
             raise ValueError(f"{path}: the last line is cut (the file does not end in a newline)")
-    try:
-        frame = pd.read_csv(path, dtype={c: str for c in text_columns})
-    except pd.errors.EmptyDataError as e:
-        raise ValueError(f"{path}: empty file") from e
-    except pd.errors.ParserError as e:
-        raise ValueError(f"{path}: {e}") from e
+        f.seek(0)
+        try:
+            frame = pd.read_csv(f, dtype={c: str for c in text_columns})
+        except pd.errors.EmptyDataError as e:
+            raise ValueError(f"{path}: empty file") from e
+        except (pd.errors.ParserError, UnicodeDecodeError) as e:
+            raise ValueError(f"{path}: {e}") from e
     missing = [c for c in columns if c not in frame.columns]
     if missing:
         raise ValueError(f"{path}: missing column(s) {', '.join(missing)} "
@@ -80,19 +84,26 @@ def read_run_energy(run, summary):
     `sim_time` (summary.json) by more than an output interval and a step: a cut file, whose
     metrics would describe the start of the run only. That much is allowed because a diverged
     or failed run does not write its last step's row."""
-    path = Path(run) / "energy.csv"
+    path, summary_path = Path(run) / "energy.csv", Path(run) / "summary.json"
     energy = read_energy(path)
     if "sim_time" not in summary:
-        raise ValueError(f"{Path(run) / 'summary.json'}: no sim_time")
-    end = float(summary["sim_time"])
-    interval = float(scene_value(summary, "output.energy_interval", 0.01))
-    slack = interval + float(summary.get("step_max", 0.0)) + 1e-9 * max(abs(end), 1.0)
+        raise ValueError(f"{summary_path}: no sim_time")
+    end = finite_number(summary["sim_time"], summary_path, "sim_time")
+    interval = finite_number(scene_value(summary, "output.energy_interval", 0.01), summary_path,
+                             "scene.output.energy_interval")
+    slack = (interval + finite_number(summary.get("step_max", 0.0), summary_path, "step_max")
+             + 1e-9 * max(abs(end), 1.0))
     last = float(energy["t"].iloc[-1])
     if last < end - slack:
         raise ValueError(f"{path}: the rows end at t = {last:g} s, before the run's sim_time = {end:g} s "
                          f"in summary.json (more than output.energy_interval = {interval:g} s and a step): "
                          "the file is cut")
     return energy
+
+
+def read_dummy(path):
+    """dummy.csv: index, section, point, x, y, z, nx, ny, nz (the drawings need the sections)."""
+    return read_csv(path, ("section", "point", "x", "y", "z"))
 
 
 def read_state(path):
@@ -141,10 +152,12 @@ def read_event_trace(run):
         return None
     arrays = {}
     for name in ("t", "x", "v", "fixed", "contact"):
-        try:
-            arrays[name] = np.load(folder / f"{name}.npy")
-        except (OSError, ValueError) as e:
-            raise ValueError(f"{folder / (name + '.npy')}: {e}") from e
+        path = folder / f"{name}.npy"
+        with open_input(path, "rb") as f:
+            try:
+                arrays[name] = np.load(f)
+            except (OSError, ValueError) as e:
+                raise ValueError(f"{path}: {e}") from e
     frames = len(arrays["t"])
     for name in ("x", "v", "fixed", "contact"):
         if len(arrays[name]) != frames:
@@ -165,9 +178,90 @@ def positions(frame):
     return frame[["x", "y", "z"]].to_numpy(dtype=float)
 
 
+# The fields of results.json the analysis reads (docs/experiments.md, "The table"): their JSON
+# type and, for a list, its items' type. Other fields are let be: rows carry any swept key.
+RESULTS_FIELDS = {"name": (str, None), "question": (str, None), "metrics": (list, str),
+                  "parameters": (list, str), "plan_size": (int, None), "columns": (list, str),
+                  "runs": (list, dict)}
+JSON_TYPES = {str: "a string", int: "an integer", float: "a number", list: "a list", dict: "an object",
+              bool: "true or false", type(None): "null"}
+
+
+def json_type(value):
+    """The JSON name of a value's type, for messages."""
+    return JSON_TYPES.get(type(value), type(value).__name__)
+
+
+def shown(value, limit=60):
+    """A JSON value as a message quotes it, cut at `limit` characters."""
+    text = json.dumps(value)
+    return text if len(text) <= limit else text[:limit] + "..."
+
+
+def finite_number(value, path, field):
+    """value as a float; a ValueError naming the file and the field when it is not a finite
+    number (null, a string, true, nan)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"{path}: {field}: expected a finite number, got {shown(value)}")
+    return float(value)
+
+
+def check_results(doc, path):
+    """A ValueError naming results.json and the field when the document lacks a field the report
+    reads or holds the wrong type there, or when a run's id is empty, repeated or would name a
+    file outside the report's folder (RUN_ID.mp4, view/RUN_ID.html)."""
+    if not isinstance(doc, dict):
+        raise ValueError(f"{path}: expected a JSON object, got {json_type(doc)}")
+    for key, (kind, item) in RESULTS_FIELDS.items():
+        if key not in doc:
+            raise ValueError(f"{path}: {key}: missing")
+        value = doc[key]
+        wrong = next((v for v in value if not isinstance(v, item)), None) if isinstance(value, list) and item else None
+        if not isinstance(value, kind) or isinstance(value, bool) or wrong is not None:
+            what = JSON_TYPES[kind] + (f" of {JSON_TYPES[item].split(' ', 1)[1]}s" if item else "")
+            raise ValueError(f"{path}: {key}: expected {what}, got {shown(value if wrong is None else wrong)}")
+    seen = set()
+    for k, run in enumerate(doc["runs"]):
+        for key in ("id", "run_dir"):
+            if not isinstance(run.get(key), str) or not run[key]:
+                raise ValueError(f"{path}: runs[{k}].{key}: expected a non-empty string, got {shown(run.get(key))}")
+        if "/" in run["id"] or run["id"] in (".", ".."):
+            raise ValueError(f"{path}: runs[{k}].id: {run['id']!r} is not a file name (it names the run's "
+                             "animation and viewer page)")
+        if run["id"] in seen:
+            raise ValueError(f"{path}: runs[{k}].id: {run['id']!r} repeats an earlier run's id")
+        seen.add(run["id"])
+
+
 def load_experiment(directory):
-    """The results document (results.json) of an experiment folder, as a dict."""
-    return read_json(Path(directory) / "results.json")
+    """The results document (results.json) of an experiment folder, as a dict, checked
+    (check_results)."""
+    path = Path(directory) / "results.json"
+    doc = read_json(path)
+    check_results(doc, path)
+    return doc
+
+
+def load_complete_experiment(directory):
+    """results.json of an experiment folder whose finished runs have all their files; a
+    ValueError naming the folder or the missing files otherwise: a report of runs whose files
+    are gone would show them as if they had run."""
+    directory = Path(directory)
+    if not directory.is_dir():
+        raise ValueError(f"{directory}: {'not a folder' if directory.exists() else 'no such folder'}")
+    if not (directory / "results.json").exists():
+        kind = "a run's folder, not an experiment's: " if (directory / "summary.json").exists() else ""
+        raise ValueError(f"{directory}: {kind}no results.json (run `drapelab experiment` or `drapelab merge` first)")
+    results = load_experiment(directory)
+    if not results.get("runs"):
+        raise ValueError(f"{directory / 'results.json'}: no runs (an experiment with an empty plan, or a "
+                         "merge before any shard finished)")
+    missing = [str(path) for row in results["runs"] for path in missing_run_files(directory, row)]
+    if missing:
+        listed = ", ".join(missing[:5]) + (f" and {len(missing) - 5} more" if len(missing) > 5 else "")
+        raise ValueError(f"{directory}: runs listed in results.json lack their files: {listed} "
+                         "(remove such a run's result.json and rerun `drapelab experiment` to redo it)")
+    return results
 
 
 def results_table(directory):
@@ -180,8 +274,23 @@ def results_table(directory):
 
 
 def read_summary(run):
-    """A run's summary.json as a dict."""
-    return read_json(Path(run) / "summary.json")
+    """A run's summary.json as a dict; a ValueError naming the file and the field when it is not
+    an object, or its events (optional) are not a list of objects each with a type (a string)
+    and a time `t` (a finite number), which every event of docs/outputs.md has."""
+    path = Path(run) / "summary.json"
+    doc = read_json(path)
+    if not isinstance(doc, dict):
+        raise ValueError(f"{path}: expected a JSON object, got {json_type(doc)}")
+    events = doc.get("events", [])
+    if not isinstance(events, list):
+        raise ValueError(f"{path}: events: expected a list, got {json_type(events)}")
+    for k, event in enumerate(events):
+        if not isinstance(event, dict):
+            raise ValueError(f"{path}: events[{k}]: expected an object, got {json_type(event)}")
+        if not isinstance(event.get("type"), str):
+            raise ValueError(f"{path}: events[{k}].type: expected a string, got {shown(event.get('type'))}")
+        finite_number(event.get("t"), path, f"events[{k}].t")
+    return doc
 
 
 def run_dir(directory, row):
@@ -192,12 +301,20 @@ def run_dir(directory, row):
 def missing_run_files(directory, row):
     """The files a run of the results table must have and has not: result.json, then
     summary.json and energy.csv (a bisection: bisect.json); none for a run that could not run
-    or crashed, which has no files to report on."""
+    or crashed, which has no files to report on. One that is there but is not a regular file
+    (a folder, a named pipe) is a ValueError naming it: it is not missing, it is wrong."""
     if row.get("status") in ("error", "crashed"):
         return []
     run = run_dir(directory, row)
     names = ("bisect.json",) if row.get("bisect_parameter") else ("summary.json", "energy.csv")
-    return [run / name for name in ("result.json",) + names if not (run / name).is_file()]
+    missing = []
+    for path in (run / name for name in ("result.json",) + names):
+        problem = input_problem(path)
+        if problem == "no such file":
+            missing.append(path)
+        elif problem:
+            raise ValueError(f"{path}: {problem}")
+    return missing
 
 
 def scene_value(summary, path, default):

@@ -36,6 +36,29 @@ def object_quads(dummy):
     return np.stack([p[:-1], q[:-1], q[1:], p[1:]], axis=2).reshape(-1, 4, 3)
 
 
+def object_surface(run):
+    """A run's object from its dummy.csv as (quads, points): quads when its sections are rings
+    of one size (object_quads), else its points; (None, None) without the file."""
+    if not (run / "dummy.csv").exists():
+        return None, None
+    dummy = runfiles.read_dummy(run / "dummy.csv")
+    quads = object_quads(dummy)
+    return quads, runfiles.positions(dummy) if quads is None else None
+
+
+def cloth_grid(run, summary, trace):
+    """(rows, cols) of a run's cloth (summary.json's scene), checked against its trace frames: a
+    ValueError naming both files when rows x cols is not the particles of a frame, which the
+    drawing's grid of cells would otherwise fail on with numpy's words."""
+    rows, cols = (runfiles.scene_value(summary, f"cloth.{k}", None) for k in ("rows", "cols"))
+    particles = trace["x"].shape[1]
+    whole = all(isinstance(n, int) and not isinstance(n, bool) and n > 0 for n in (rows, cols))
+    if not whole or rows * cols != particles:
+        raise ValueError(f"{run / 'summary.json'}: scene.cloth.rows x cols = {rows} x {cols}, but "
+                         f"{run / 'trace.csv'} has {particles} particles a frame")
+    return rows, cols
+
+
 def shade(quads, rgb, view):
     """Face colours: rgb times 0.35 + 0.65 |n . l|, n the cell normal (cross of its diagonals),
     l from the viewer, up and to the left."""
@@ -132,19 +155,17 @@ def scene_figures(directory, out_dir, scene, rows):
     runs = []
     for row in methods(rows):
         run = runfiles.run_dir(directory, row)
-        if (run / "trace.csv").exists():
-            runs.append((row, runfiles.read_summary(run) if (run / "summary.json").exists() else {},
-                         runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))))
+        # A run without summary.json did not finish (its trace may stop anywhere) and has no grid.
+        if (run / "trace.csv").exists() and (run / "summary.json").exists():
+            summary = runfiles.read_summary(run)
+            trace = runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))
+            runs.append((row, summary, trace, cloth_grid(run, summary, trace)))
     if not runs:
         return []
-    first = runfiles.run_dir(directory, runs[0][0])
     summary = runs[0][1]
-    rows_n, cols_n = (runfiles.scene_value(summary, f"cloth.{k}", 0) for k in ("rows", "cols"))
-    dummy = runfiles.read_table(first / "dummy.csv") if (first / "dummy.csv").exists() else None
-    objects = object_quads(dummy) if dummy is not None else None
-    points = runfiles.positions(dummy) if dummy is not None and objects is None else None
-    shown = instants(summary, max(float(trace["t"][-1]) for _, _, trace in runs))
-    all_x = np.concatenate([trace["x"].reshape(-1, 3) for _, _, trace in runs])
+    objects, points = object_surface(runfiles.run_dir(directory, runs[0][0]))
+    shown = instants(summary, max(float(trace["t"][-1]) for _, _, trace, _ in runs))
+    all_x = np.concatenate([trace["x"].reshape(-1, 3) for _, _, trace, _ in runs])
     lo, hi = all_x.min(axis=0) - 0.05, all_x.max(axis=0) + 0.05
     stems = []
     for view in VIEWS:
@@ -153,7 +174,7 @@ def scene_figures(directory, out_dir, scene, rows):
         panel_w = 1.9 * min(max(width / (hi[1] - lo[1]), 0.6), 1.4)
         fig, axes = plt.subplots(len(shown), len(runs), squeeze=False,
                                  figsize=(panel_w * len(runs) + 0.8, 2.0 * len(shown) + 0.6))
-        for c, (row, run_summary, trace) in enumerate(runs):
+        for c, (row, run_summary, trace, (rows_n, cols_n)) in enumerate(runs):
             axes[0, c].set_title(method_name(row))
             for r, (kind, occurrence, t) in enumerate(shown):
                 ax = axes[r, c]

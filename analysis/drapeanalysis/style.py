@@ -8,6 +8,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from .fileio import atomic_output  # noqa: E402
+
 MIN_FONT = 8
 DPI = 200
 FORMATS = ("png", "svg", "pdf")
@@ -121,11 +123,15 @@ def empty_note(ax, why):
 
 
 def save(fig, out_dir, stem):
-    """Writes the figure as PNG (200 dpi), SVG and PDF and closes it; returns the stem."""
+    """Writes the figure as PNG (200 dpi), SVG and PDF, each whole or not at all
+    (fileio.atomic_output), and closes it; returns the stem."""
     with warnings.catch_warnings():  # figures with outside legends cannot always be tightened
         warnings.simplefilter("ignore")
         fig.tight_layout()
-    for fmt in FORMATS:
-        fig.savefig(out_dir / f"{stem}.{fmt}", dpi=DPI, bbox_inches="tight")
-    plt.close(fig)
+    try:
+        for fmt in FORMATS:
+            with atomic_output(out_dir / f"{stem}.{fmt}") as temporary:
+                fig.savefig(temporary, format=fmt, dpi=DPI, bbox_inches="tight")
+    finally:
+        plt.close(fig)
     return stem

@@ -5,6 +5,10 @@ show a run alike."""
 import subprocess
 
 from . import plots, runfiles
+from .fileio import OutputError, output_folder
+
+# drapelab's exit status for an output it could not write (README, exit status).
+WRITE_FAILED = 4
 
 # Integrators that solve for the new state (docs/integrators.md); the rest step explicitly.
 IMPLICIT = ("implicit-euler", "arkode-dirk", "arkode-imex")
@@ -42,12 +46,16 @@ def side_by_side(rows):
 
 def _view(drapelab, directory, chosen, page):
     """Runs `drapelab view`; None when written, else its error (a malformed file of one run must
-    not stop the report)."""
+    not stop the report). A page it could not write is an OutputError: the report would look
+    whole with a page missing for want of disk."""
     args = [drapelab, "view", *(str(runfiles.run_dir(directory, r)) for r in chosen), "--out", str(page)]
     done = subprocess.run(args, capture_output=True, text=True)
     if done.returncode:
         lines = (done.stderr or done.stdout).strip().splitlines()
-        return f"no page: drapelab view failed ({lines[-1] if lines else f'exit {done.returncode}'})"
+        words = lines[-1] if lines else f"exit {done.returncode}"
+        if done.returncode == WRITE_FAILED:
+            raise OutputError(f"{page}: drapelab view failed ({words})")
+        return f"no page: drapelab view failed ({words})"
     return None
 
 
@@ -55,8 +63,7 @@ def write_pages(directory, out_dir, rows, drapelab):
     """Writes out_dir/view/RUN_ID.html per run with frames and out_dir/view/scenes/SCENE.html per scene
     with two such runs. Returns (links, notes, scenes): run id -> page path relative to out_dir,
     run id -> why it has none, scene -> (page path, the runs shown)."""
-    view_dir = out_dir / "view"
-    view_dir.mkdir(exist_ok=True)
+    view_dir = output_folder(out_dir / "view")
     links, notes, by_scene = {}, {}, {}
     for row in rows:
         note = missing_frames(directory, row)

@@ -2,6 +2,8 @@
 analysis/drapeanalysis importable however the tests are started."""
 import json
 import math
+import os
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -145,6 +147,15 @@ def write_experiment(directory, scenes=("scenes/a.json", "scenes/b.json"), steps
         "name": "synthetic", "question": "q?", "metrics": [], "parameters": ["integrator.name", "integrator.dt"],
         "plan_size": len(runs), "columns": columns, "runs": runs}))
     return runs
+
+
+def run_report(directory, *args, timeout=120, env=None, **kwargs):
+    """report.py DIR ARGS with this tree's drapeanalysis (and `env` added to the environment), as
+    a finished subprocess (its output as text); a timeout fails the test instead of blocking it
+    (a report reading a named pipe)."""
+    env = {**os.environ, "PYTHONPATH": str(ANALYSIS_DIR), "PYTHONDONTWRITEBYTECODE": "1", **(env or {})}
+    return subprocess.run([sys.executable, str(ANALYSIS_DIR / "report.py"), str(directory), *map(str, args)],
+                          capture_output=True, text=True, env=env, timeout=timeout, **kwargs)
 
 
 class RunFolderTest(unittest.TestCase):

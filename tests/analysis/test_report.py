@@ -154,16 +154,12 @@ class ReportBadInputTest(unittest.TestCase):
             runs = runfolder.write_experiment(Path(tmp))
             energy = Path(tmp) / runs[0]["run_dir"] / "energy.csv"
             energy.write_text("x\n1\n")
-            done = subprocess.run([sys.executable, str(ANALYSIS / "report.py"), tmp],
-                                  capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=str(ANALYSIS)))
+            done = self.report(tmp)
             self.assertEqual(done.returncode, 2, done.stderr)
             self.assertIn(f"{energy}: missing column(s) t, total", done.stderr)
-            self.assertNotIn("Traceback", done.stderr)
-
 
     def report(self, directory):
-        done = subprocess.run([sys.executable, str(ANALYSIS / "report.py"), str(directory)],
-                              capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=str(ANALYSIS)))
+        done = runfolder.run_report(directory)
         self.assertNotIn("Traceback", done.stderr)
         return done
 

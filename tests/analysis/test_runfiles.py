@@ -1,4 +1,5 @@
 """Bad run files: a clear error naming the file, or (for files a run may lack) no metric."""
+import json
 import tempfile
 import unittest
 from pathlib import Path
@@ -27,12 +28,13 @@ class BadInputTest(unittest.TestCase):
             self.assertIn(word, text)
 
     def test_missing_file(self):
-        with self.assertRaises(FileNotFoundError) as error:
+        # A ValueError like every other bad input (the report's exit status 2), in drapelab's words.
+        with self.assertRaises(ValueError) as error:
             runfiles.read_table(self.run / "energy.csv")
-        self.assertIn("energy.csv", str(error.exception))
-        with self.assertRaises(FileNotFoundError) as error:
+        self.assertNamesFile(error, self.run / "energy.csv", "no such file")
+        with self.assertRaises(ValueError) as error:
             runfiles.read_trace(self.run / "trace.csv")
-        self.assertIn("trace.csv", str(error.exception))
+        self.assertNamesFile(error, self.run / "trace.csv", "no such file")
 
     def test_files_a_run_may_lack(self):
         # A diverged run has no state.csv, a run without a trace no trace.csv: no metric, no error.
@@ -145,6 +147,65 @@ class BadInputTest(unittest.TestCase):
         with self.assertRaises(ValueError) as error:
             metrics.mapping_error(self.run, runfiles.read_json(self.run / "summary.json"))
         self.assertNamesFile(error, self.run / "state.csv", "2 x 3")
+
+
+class DocumentTest(runfolder.RunFolderTest):
+    """results.json and summary.json without a field the analysis reads, or with a value of the
+    wrong type there: a ValueError naming the file and the field (was a KeyError or TypeError)."""
+
+    RESULTS = {"name": "n", "question": "q", "metrics": [], "parameters": ["integrator.dt"], "plan_size": 1,
+               "columns": ["id", "run_dir"], "runs": [{"id": "a", "run_dir": "runs/a"}]}
+
+    def assertRefused(self, name, doc, message, read):
+        (self.directory / name).write_text(json.dumps(doc))
+        with self.assertRaises(ValueError) as error:
+            read(self.directory)
+        self.assertEqual(str(error.exception), f"{self.directory / name}: {message}")
+
+    def test_results_json(self):
+        runs = self.RESULTS["runs"]
+        for doc, message in (
+                ([], "expected a JSON object, got a list"),
+                ({k: v for k, v in self.RESULTS.items() if k != "runs"}, "runs: missing"),
+                ({**self.RESULTS, "parameters": "integrator.dt"}, 'parameters: expected a list of strings, got "integrator.dt"'),
+                ({**self.RESULTS, "columns": ["id", 3]}, "columns: expected a list of strings, got 3"),
+                ({**self.RESULTS, "plan_size": True}, "plan_size: expected an integer, got true"),
+                ({**self.RESULTS, "runs": [1]}, "runs: expected a list of objects, got 1"),
+                ({**self.RESULTS, "runs": [{"run_dir": "runs/a"}]}, "runs[0].id: expected a non-empty string, got null"),
+                ({**self.RESULTS, "runs": [{"id": "a", "run_dir": ""}]}, 'runs[0].run_dir: expected a non-empty string, got ""'),
+                ({**self.RESULTS, "runs": [{"id": "../a", "run_dir": "runs/a"}]},
+                 "runs[0].id: '../a' is not a file name (it names the run's animation and viewer page)"),
+                ({**self.RESULTS, "runs": runs + runs}, "runs[1].id: 'a' repeats an earlier run's id")):
+            with self.subTest(message):
+                self.assertRefused("results.json", doc, message, runfiles.load_experiment)
+        (self.directory / "results.json").write_text(json.dumps(self.RESULTS))
+        self.assertEqual(runfiles.load_experiment(self.directory), self.RESULTS)
+
+    def test_summary_json(self):
+        for doc, message in (
+                ("ok", 'expected a JSON object, got a string'),
+                ({"events": {}}, "events: expected a list, got an object"),
+                ({"events": [[]]}, "events[0]: expected an object, got a list"),
+                ({"events": [{"t": 0.1}]}, "events[0].type: expected a string, got null"),
+                ({"events": [{"t": 0.1, "type": "hold"}, {"t": "0.2", "type": "release"}]},
+                 'events[1].t: expected a finite number, got "0.2"')):
+            with self.subTest(message):
+                self.assertRefused("summary.json", doc, message, runfiles.read_summary)
+        # NaN is not JSON, but Python's json reads it.
+        (self.directory / "summary.json").write_text('{"events": [{"t": NaN, "type": "hold"}]}')
+        with self.assertRaises(ValueError) as error:
+            runfiles.read_summary(self.directory)
+        self.assertIn("events[0].t: expected a finite number, got NaN", str(error.exception))
+
+    def test_summary_numbers_the_energy_check_reads(self):
+        runfolder.write_energy(self.directory, [0.0, 0.1], [-1.0, -1.0])
+        for summary, message in (({"sim_time": None}, "sim_time: expected a finite number, got null"),
+                                 ({"sim_time": 0.1, "step_max": "x"}, 'step_max: expected a finite number, got "x"'),
+                                 ({"sim_time": 0.1, "scene": {"output": {"energy_interval": []}}},
+                                  "scene.output.energy_interval: expected a finite number, got []")):
+            with self.subTest(message), self.assertRaises(ValueError) as error:
+                runfiles.read_run_energy(self.directory, summary)
+            self.assertEqual(str(error.exception), f"{self.directory / 'summary.json'}: {message}")
 
 
 if __name__ == "__main__":
