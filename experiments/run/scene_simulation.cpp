@@ -7,20 +7,31 @@
 
 namespace drape {
 
+IntegratorOptions checked_integrator_options(const Scene& scene,
+                                             const std::string& integrator_field) {
+  IntegratorOptions options = read_integrator_options(scene.integrator, scene.file, integrator_field);
+  check_run_limits(scene, options, integrator_field);
+  return options;
+}
+
+std::shared_ptr<const Dummy> scene_dummy(const Scene& scene) {
+  if (scene.dummy.is_null()) return nullptr;
+  return std::make_shared<const Dummy>(make_dummy(scene.dummy, scene.file, "dummy", scene.base_dir));
+}
+
+std::optional<HandInput> scene_hand_input(const Scene& scene) {
+  if (scene.input.is_null()) return std::nullopt;
+  return load_hand_input(scene.input, scene.file, "input", scene.base_dir);
+}
+
 SceneSimulation::SceneSimulation(const Scene& scene, const std::string& integrator_field)
-    : m_scene(scene),
-      m_options(read_integrator_options(scene.integrator, scene.file, integrator_field)) {
-  check_run_limits(scene, m_options, integrator_field);
-  std::shared_ptr<const Dummy> dummy;
-  if (!scene.dummy.is_null())
-    dummy = std::make_shared<const Dummy>(make_dummy(scene.dummy, scene.file, "dummy", scene.base_dir));
-  m_system = std::make_unique<ClothSystem>(build_cloth(scene.cloth), dummy, scene.forces);
+    : m_scene(scene), m_options(checked_integrator_options(scene, integrator_field)) {
+  m_system = std::make_unique<ClothSystem>(build_cloth(scene.cloth), scene_dummy(scene), scene.forces);
   for (const GridPoint& pin : scene.pins) {
     const int i = m_system->cloth().index(pin.row, pin.col);
     m_system->constraints().fix_at(i, m_system->cloth().rest_positions.segment<3>(3 * i));
   }
-  if (!scene.input.is_null())
-    m_input = load_hand_input(scene.input, scene.file, "input", scene.base_dir);
+  m_input = scene_hand_input(scene);
   m_manipulator = std::make_unique<Manipulator>(*m_system, m_input ? &m_input->track : nullptr,
                                                 scene.manipulation);
   m_integrator = make_integrator(m_options, *m_system);

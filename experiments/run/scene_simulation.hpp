@@ -12,6 +12,16 @@
 
 namespace drape {
 
+/// The parts of a run built from its scene that can fail on its input, each throwing InputError
+/// naming the scene file and the field: the integrator's options read from `integrator_field`
+/// and checked against the run limits (run_limits.hpp), the object (null without one) and the
+/// hand input (none without one). SceneSimulation builds a run from them; an experiment checks
+/// every run with them before any runs (sweep/run_validation.cpp).
+IntegratorOptions checked_integrator_options(const Scene& scene,
+                                             const std::string& integrator_field = "integrator");
+std::shared_ptr<const Dummy> scene_dummy(const Scene& scene);
+std::optional<HandInput> scene_hand_input(const Scene& scene);
+
 /// Everything one scene runs with. Throws InputError (naming the scene file and the field) for
 /// invalid input found while building; errors in the integrator name `integrator_field` (the
 /// restart error's reference is read from another field).

@@ -6,11 +6,9 @@
 
 #include <fmt/format.h>
 
-#include "core/dummy/dummy_sources.hpp"
-#include "core/input/input_config.hpp"
 #include "core/scene/input_error.hpp"
 #include "core/scene/scene.hpp"
-#include "experiments/run/run_limits.hpp"
+#include "experiments/run/scene_simulation.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "integrators/interface/integrator_options.hpp"
 
@@ -39,20 +37,17 @@ std::pair<std::string, std::string> override_origin(const Experiment& e, const R
   return {e.file, key};  // restart_error, which plan_run adds
 }
 
-// What a run builds from its scene before its first step (SceneSimulation), without the
-// cloth and the integrator, which parse_scene and read_integrator_options have checked. The
+// What a run builds from its scene that can fail on its input (scene_simulation.hpp), without
+// the cloth and the integrator, which parse_scene and read_integrator_options have checked. The
 // dummy and the recording are built once per distinct object: a sweep's runs mostly share them.
 class RunInputCheck {
  public:
   void check(const Scene& scene) {
-    const IntegratorOptions options = read_integrator_options(scene.integrator, scene.file, "integrator");
-    check_run_limits(scene, options);
+    checked_integrator_options(scene);
     if (scene.restart_error.enabled())
       read_integrator_options(scene.restart_error.reference, scene.file, "restart_error.reference");
-    if (first_time("dummy", scene.dummy, scene))
-      make_dummy(scene.dummy, scene.file, "dummy", scene.base_dir);
-    if (first_time("input", scene.input, scene))
-      load_hand_input(scene.input, scene.file, "input", scene.base_dir);
+    if (first_time("dummy", scene.dummy, scene)) scene_dummy(scene);
+    if (first_time("input", scene.input, scene)) scene_hand_input(scene);
   }
 
  private:
