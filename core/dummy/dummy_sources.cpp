@@ -105,7 +105,7 @@ DummySections read_file_source(JsonReader& reader, const std::string& key,
 DummySections read_mesh_source(JsonReader& reader, const std::string& key,
                                const Resolution& res, const SourceContext& context) {
   const double unit =
-      reader.at_most("unit", reader.positive("unit", reader.number("unit", 1.0)), 1e3);
+      reader.at_least("unit", reader.at_most("unit", reader.number("unit", 1.0), 1e3), 1e-6);
   const std::filesystem::path path = context.resolve(reader.string(key));
   // As for sections files: the scene's field first, then the mesh file's own message.
   TriangleMesh mesh;
@@ -161,8 +161,10 @@ DummySections make_dummy_sections(const nlohmann::json& spec, const std::string&
   if (static_cast<std::int64_t>(res.sections) * res.points > kMaxDummyParticles)
     throw reader.error("sections", "sections x points exceeds " +
                                        std::to_string(kMaxDummyParticles) + " particles");
-  const double scale =
-      reader.at_most("scale", reader.positive("scale", reader.number("scale", 1.0)), 1e3);
+  // Bounded below too: a body scaled to nothing has no spacing for its nearest-particle grid
+  // (1e-300 made its cells underflow) and no sections to tell apart (docs/scene.md, Limits).
+  const double scale = reader.at_least(
+      "scale", reader.at_most("scale", reader.number("scale", 1.0), 1e3), 1e-3);
   const Vec3 offset = reader.vec3("offset", Vec3::Zero());
   reader.within("offset", offset, limits::max_coordinate);
 

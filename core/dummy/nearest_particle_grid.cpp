@@ -28,7 +28,9 @@ ParticleGrid::ParticleGrid(const Eigen::VectorXd& positions, double cell_size) {
   // Raise the cell size until the cell count fits the budget (a thin or huge bounding box with
   // a small hint would otherwise allocate a dense grid of empty cells).
   const double max_cells = std::max(64.0, kMaxCellsPerPoint * n);
-  double cell = cell_size;
+  // At least the smallest normal double: a hint that underflowed to 0 made 0 / 0 cells and the
+  // loop below never ended.
+  double cell = std::max(cell_size, std::numeric_limits<double>::min());
   for (;;) {
     const Vec3 dims = (extent / cell).array().floor() + 1.0;
     const double cells = dims.prod();

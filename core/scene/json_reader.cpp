@@ -156,6 +156,13 @@ double JsonReader::at_most(const std::string& key, double value, double limit) c
   return value;
 }
 
+double JsonReader::at_least(const std::string& key, double value, double limit) const {
+  if (!(value >= limit))
+    throw error(key, "must be at least " + nlohmann::json(limit).dump() + ", got " +
+                         nlohmann::json(value).dump());
+  return value;
+}
+
 double JsonReader::within(const std::string& key, double value, double limit) const {
   within(key, Vec3(value, 0.0, 0.0), limit);
   return value;

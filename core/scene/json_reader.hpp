@@ -49,6 +49,8 @@ class JsonReader {
   double non_negative(const std::string& key, double value) const;
   /// `value` must not exceed `limit` (docs/scene.md, Limits: products of larger values overflow).
   double at_most(const std::string& key, double value, double limit) const;
+  /// `value` must be at least `limit`.
+  double at_least(const std::string& key, double value, double limit) const;
   /// Every coordinate of `value` within [-limit, limit].
   double within(const std::string& key, double value, double limit) const;
   Vec3 within(const std::string& key, const Vec3& value, double limit) const;

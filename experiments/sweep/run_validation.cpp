@@ -1,6 +1,7 @@
 #include "experiments/sweep/run_validation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <string>
 
@@ -75,16 +76,19 @@ bool passes_with(const RunSpec& run, const std::vector<std::string>& assignments
 void validate_runs(const Experiment& experiment, const std::vector<RunSpec>& runs) {
   RunInputCheck inputs;
   for (const RunSpec& run : runs) {
-    // A bisection's probes span [low, high]: both ends are checked, each naming its field.
+    // A bisection's probes span [low, high]: both ends are checked, each naming its field, and
+    // the first probe between them, sqrt(low high), which no integer key (cloth.rows) accepts.
     struct Variant {
       std::vector<std::string> assignments;
-      const char* end;  ///< the bisection's field of the probe, "" without one
+      const char* end;  ///< which probe, "" without a bisection
       double probe_at;  ///< the probe's value, with a bisection
     };
     std::vector<Variant> variants;
     if (run.bisect) {
-      variants.push_back({run.assignments(run.bisect->low), "low", run.bisect->low});
-      variants.push_back({run.assignments(run.bisect->high), "high", run.bisect->high});
+      const double low = run.bisect->low, high = run.bisect->high, middle = std::sqrt(low * high);
+      variants.push_back({run.assignments(low), "bisect.low", low});
+      variants.push_back({run.assignments(high), "bisect.high", high});
+      variants.push_back({run.assignments(middle), "the first probe between bisect.low and bisect.high", middle});
     } else {
       variants.push_back({run.assignments(), "", 0.0});
     }
@@ -112,7 +116,7 @@ void validate_runs(const Experiment& experiment, const std::vector<RunSpec>& run
         }
         if (probe) {
           throw InputError(experiment.file, "bisect",
-                           fmt::format("{} = {} (bisect.{}): {}{}{}", run.bisect->parameter,
+                           fmt::format("{} = {} ({}): {}{}{}", run.bisect->parameter,
                                        probe_at, end, e.field() == run.bisect->parameter ? "" : e.field() + ": ",
                                        e.message(), in_scene));
         }

@@ -165,6 +165,7 @@ TEST(DummySources, BadSceneInputNamesTheField) {
   expect_input_error(with("y_top", 0.5), "dummy.y_top");
   expect_input_error(with("center", {0.0, 0.0, 0.0}), "dummy.center");
   expect_input_error(with("scale", 0.0), "dummy.scale");
+  expect_input_error(with("scale", 1e-300), "dummy.scale");  // hung in the nearest-particle grid
   expect_input_error(with("offset", {1.0, 2.0}), "dummy.offset");
   expect_input_error(with("file", "form.json"), "dummy.file");
   expect_input_error({{"builtin", "cylinder"}, {"radius", 0.1}, {"y_top", 1.0}},

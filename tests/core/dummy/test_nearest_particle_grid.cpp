@@ -53,6 +53,16 @@ TEST(ParticleGrid, TiesGoToTheLowestIndex) {
   EXPECT_EQ(grid.nearest_within(Vec3(0.0, 0.0, 0.01), 0.05).index, 1);
 }
 
+TEST(ParticleGrid, ACellSizeThatUnderflowedToZeroStillBuildsAGrid) {
+  // Points 1e-150 apart on one axis, none on the others, and a cell size of 0: the cell count
+  // was 0 / 0 on those axes and the budget loop never ended.
+  Eigen::VectorXd points(6);
+  points << 0, 0, 0, 1e-150, 0, 0;
+  const ParticleGrid grid(points, 0.0);
+  EXPECT_EQ(grid.nearest(Vec3(1e-150, 0.0, 0.0)).index, 1);
+  EXPECT_EQ(grid.nearest(Vec3(-1.0, 0.0, 0.0)).index, 0);
+}
+
 TEST(ParticleGrid, CellBudgetCapsATinyCellSize) {
   Eigen::VectorXd points(6);
   points << 0, 0, 0, 1, 1, 1;

@@ -57,6 +57,10 @@ TEST(ExperimentRun, BadOverridesStopBeforeAnyRun) {
   EXPECT_EQ(error(bad_probe).find(exp + ": bisect: cloth.rows = 4000000 (bisect.high): cloth.cols: "
                                        "rows x cols = 16000000 particles"), 0u)
       << error(bad_probe);
+  // The probes between the ends are not integers: an integer key cannot be bisected.
+  bad_probe["bisect"] = json::parse(R"({"parameter": "cloth.rows", "low": 2, "high": 30})");
+  EXPECT_EQ(error(bad_probe), exp + ": bisect: cloth.rows = 7.745966692414834 (the first probe between bisect.low "
+                                    "and bisect.high): expected an integer, got 7.745966692414834 (in cloth.json)");
   // A key the experiment makes inside an object the scene does not know names the experiment.
   json unknown_object = two_by_three();
   unknown_object["sweep"]["nosuch.key"] = json::array({1});
