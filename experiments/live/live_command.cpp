@@ -118,20 +118,34 @@ void serve_hand(httplib::Server& server, LiveSession& session) {
 
 int live(const LiveOptions& o) {
   check_options(o);
-  const auto owned_session = with_command_line_overrides(
+  // Both ports are taken before the session clears --out: a port in use must not cost the
+  // folder's earlier run. The session outlives the bridge that feeds it (declared first);
+  // frames that arrive before it exists, before the banner, are dropped.
+  std::unique_ptr<LiveSession> owned_session;
+  std::atomic<LiveSession*> frames_to{nullptr};
+  httplib::Server server;
+  // Loopback only: the page drives a simulation, nobody else on the network should.
+  if (!server.bind_to_port("127.0.0.1", o.port))
+    throw InputError("--port", "",
+                     fmt::format("cannot listen on 127.0.0.1:{} (in use or not allowed)", o.port));
+  std::unique_ptr<SensorBridge> sensor;
+  if (o.sensor_port)
+    sensor = std::make_unique<SensorBridge>(
+        *o.sensor_port, [&frames_to](const HandFrame& frame, const std::string& where) {
+          if (LiveSession* session = frames_to.load()) session->sensor_frame(frame, where);
+        });
+  owned_session = with_command_line_overrides(
       o.scene_file, o.overrides, [&o](const Scene& scene) {
         return std::make_unique<LiveSession>(scene, o.out_dir,
                                              o.live_hands || o.sensor_port.has_value());
       });
   LiveSession& session = *owned_session;
-  std::unique_ptr<SensorBridge> sensor;
-  if (o.sensor_port)
-    sensor = std::make_unique<SensorBridge>(
-        *o.sensor_port, [&session](const HandFrame& frame, const std::string& where) {
-          session.sensor_frame(frame, where);
-        });
-
-  httplib::Server server;
+  frames_to = &session;
+  // A request body is a hand position or a key: 1 MiB is far beyond either, and a client
+  // sending gigabytes must get 413, not the server's memory. Each page's event stream holds a
+  // worker for as long as the page is open, so there are more workers than tabs anyone opens.
+  server.set_payload_max_length(1 << 20);
+  server.new_task_queue = [] { return new httplib::ThreadPool(64); };
   const std::string page = live_page(session.scene_json());
   server.Get("/", [&page](const httplib::Request&, httplib::Response& res) {
     res.set_content(page, "text/html; charset=utf-8");
@@ -147,10 +161,6 @@ int live(const LiveOptions& o) {
     session.key(req.body);
     res.set_content("ok\n", "text/plain");
   });
-  // Loopback only: the page drives a simulation, nobody else on the network should.
-  if (!server.bind_to_port("127.0.0.1", o.port))
-    throw InputError("--port", "",
-                     fmt::format("cannot listen on 127.0.0.1:{} (in use or not allowed)", o.port));
   std::atomic<bool> listened{false};
   std::thread server_thread([&server, &listened] {
     server.listen_after_bind();
@@ -173,7 +183,14 @@ int live(const LiveOptions& o) {
   if (o.open) std::system(("xdg-open " + url + " >/dev/null 2>&1 &").c_str());
 
   std::string status;
-  std::thread simulation_thread([&session, &status] { status = session.run(); });
+  std::exception_ptr failure;  // a failed write (exit 4) ends the run, not the process
+  std::thread simulation_thread([&session, &status, &failure] {
+    try {
+      status = session.run();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  });
   while (!session.finished()) {
     if (g_interrupted) session.stop();
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -182,7 +199,32 @@ int live(const LiveOptions& o) {
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   server.stop();
+  // A client that keeps a request open, sending a byte now and then, holds its worker, and
+  // httplib's stop() waits for every worker: the run's files are written, so after 5 s the
+  // command ends without it.
+  const auto stop_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!listened && std::chrono::steady_clock::now() < stop_deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  if (!listened) {
+    fmt::print(stderr, "drapelab live: a client still holds a request open; ending without it\n");
+    int code = status == "ok" || status == "stopped" ? exit_ok : exit_diverged;
+    if (failure) {
+      try {
+        std::rethrow_exception(failure);
+      } catch (const OutputError& e) {
+        fmt::print(stderr, "drapelab: error: {}\n", e.what());
+        code = exit_output;
+      } catch (const std::exception& e) {
+        fmt::print(stderr, "drapelab: error: {}\n", e.what());
+        code = exit_input;
+      }
+    }
+    std::fflush(stdout);
+    std::fflush(stderr);
+    std::_Exit(code);
+  }
   server_thread.join();
+  if (failure) std::rethrow_exception(failure);
   if (sensor)
     fmt::print("drapelab live: sensor bridge: {} frames, {} malformed lines ignored\n",
                sensor->frames(), sensor->malformed());

@@ -196,6 +196,12 @@ void LiveSession::publish(double wall, bool behind) {
 }
 
 std::string LiveSession::run() {
+  // However the run ends (its end, a stop, a write that failed and threw), the page's stream
+  // and the command waiting for the session end with it.
+  struct Finish {
+    std::atomic<bool>& finished;
+    ~Finish() { finished = true; }
+  } finish{m_finished};
   using clock = std::chrono::steady_clock;
   Simulation& simulation = m_run->simulation();
   const auto start = clock::now();
@@ -222,7 +228,6 @@ std::string LiveSession::run() {
   }
   const std::string status = simulation.status().ended() ? simulation.status().status : "stopped";
   write_outputs(status);
-  m_finished = true;
   return status;
 }
 

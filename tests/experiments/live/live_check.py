@@ -12,6 +12,9 @@ import signal
 import socket
 import subprocess
 import sys
+import threading
+import time
+import urllib.error
 import urllib.request
 
 from live_client import free_port
@@ -42,8 +45,37 @@ def main():
     assert frames[-1]["t"] > frames[0]["t"], "simulated time advances"
     page = urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=10).read().decode()
     assert "EventSource" in page
+    # a request body beyond 1 MiB is refused (413), not read into memory
+    try:
+        urllib.request.urlopen(urllib.request.Request(f"http://127.0.0.1:{port}/key",
+                                                      data=b" " * (2 << 20), method="POST"),
+                               timeout=10)
+        raise AssertionError("a 2 MiB body was accepted")
+    except urllib.error.HTTPError as e:
+        assert e.code == 413, e.code
+    # a client that keeps a request open, a byte at a time, does not keep the command from
+    # ending after Ctrl-C (it waited for ever)
+    loris = socket.create_connection(("127.0.0.1", port))
+    loris.sendall(b"GET / HTTP/1.1\r\nHost: x\r\n")
+    holding = threading.Event()
+    holding.set()
+
+    def trickle():
+        while holding.is_set():
+            try:
+                loris.sendall(b"X")
+            except OSError:
+                return
+            time.sleep(1)
+    trickler = threading.Thread(target=trickle, daemon=True)
+    trickler.start()
+    time.sleep(0.5)
+    stopped_at = time.monotonic()
     proc.send_signal(signal.SIGINT)
     assert proc.wait(timeout=30) == 0
+    assert time.monotonic() - stopped_at < 15, time.monotonic() - stopped_at
+    holding.clear()
+    loris.close()
     summary = json.loads((out / "summary.json").read_text())
     assert summary["status"] == "stopped", summary["status"]
     assert 0 < summary["sim_time"] < 60
@@ -66,6 +98,17 @@ def main():
                               "--set", 'restart_error={"reference":{"name":"leapfrog","dt":1e-5},"horizons":[0.1]}'],
                              capture_output=True, text=True)
     assert refused.returncode == 2 and "restart_error" in refused.stderr, (refused.returncode, refused.stderr)
+    # a final write that fails (the folder removed during the run) is exit 4 naming the file,
+    # not an abort of the simulation's thread
+    gone = work / "gone"
+    failing = subprocess.Popen([drapelab, "live", str(scene), "--port", str(free_port()),
+                                "--out", str(gone), "--set", "duration=60"],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    failing.stdout.readline()
+    shutil.rmtree(gone)
+    failing.send_signal(signal.SIGINT)
+    assert failing.wait(timeout=30) == 4, failing.returncode
+    assert f"cannot write {gone}" in failing.stderr.read()
     # Ctrl-C right after the banner stops the session (exit 0, status "stopped"): the handler is
     # in place before the banner is out (it was not: 3 of 80 such stops under load were killed
     # by the default handler, exit -2)

@@ -58,6 +58,38 @@ TEST(LiveCommand, RefusesARunsFolderAsRunDoesAndReplacesItWithOverwrite) {
   EXPECT_NE(read_text(run / "summary.json").find("\"live\""), std::string::npos);
 }
 
+// A socket listening on a port the system chose, held until destruction.
+struct BusyPort {
+  int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  int port = 0;
+  BusyPort() {
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t size = sizeof address;
+    ::bind(fd, reinterpret_cast<sockaddr*>(&address), size);
+    ::listen(fd, 1);
+    ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &size);
+    port = ntohs(address.sin_port);
+  }
+  ~BusyPort() { ::close(fd); }
+};
+
+TEST(LiveCommand, APortInUseLeavesTheFoldersEarlierRun) {
+  // Both ports are taken before --overwrite clears the folder: the earlier run stays whole.
+  const fs::path run = fresh("busy");
+  std::ofstream(run / "summary.json") << R"({"status": "ok"})";
+  const BusyPort busy;
+  const std::string busy_port = std::to_string(busy.port);
+  for (const std::string& ports :
+       {"--port " + busy_port, "--port " + std::to_string(free_port()) + " --sensor-port " + busy_port}) {
+    const auto r = run_drapelab(live(run, ports) + " --overwrite");
+    EXPECT_EQ(r.exit_code, 2) << ports;
+    EXPECT_NE(r.err.find("cannot listen on 127.0.0.1:" + busy_port), std::string::npos) << r.err;
+    EXPECT_EQ(read_text(run / "summary.json"), R"({"status": "ok"})") << ports;
+  }
+}
+
 TEST(LiveCommand, RefusesAFileAsOutAndBadOrSharedPortsNamingTheOptions) {
   const fs::path dir = fresh("options");
   std::ofstream(dir / "a_file") << "x";
