@@ -38,9 +38,21 @@ int run_command(const std::string& scene_file, const std::string& out_dir,
   return outcome.exit_code;
 }
 
+// What goes to standard output (the integrators' list, a table, --version, --list) is the
+// command's output: a write that failed there (a full disk, /dev/full) is exit 4 as for a file,
+// not exit 0 with an empty or cut result that a script would take (docs/model.md section 9).
+int with_standard_output_checked(int code) {
+  std::cout.flush();
+  const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+  if (!failed) return code;
+  std::cerr << "drapelab: error: cannot write to standard output\n";
+  return code == 0 || code == drape::exit_failure ? drape::exit_output : code;
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
+// The command line, parsed and run; its exit status (main checks standard output after it).
+static int run_drapelab(int argc, char** argv) {
   // Past a file size limit (ulimit -f) the kernel's default is to kill the process; ignored, the
   // write fails with EFBIG instead and the run stops as a failed write, exit 4 (docs/outputs.md).
   std::signal(SIGXFSZ, SIG_IGN);
@@ -149,3 +161,5 @@ int main(int argc, char** argv) {
     return drape::exit_failure;
   }
 }
+
+int main(int argc, char** argv) { return with_standard_output_checked(run_drapelab(argc, argv)); }

@@ -351,6 +351,18 @@ TEST(DrapelabHarden, AFailedWriteStopsTheRunWithExitFour) {
   EXPECT_FALSE(fs::exists(out / "summary.json")) << "the folder must not look complete";
 }
 
+TEST(DrapelabHarden, AFailedWriteToStandardOutputIsExitFour) {
+  // /dev/full refuses every write (ENOSPC): a table or list that reached nobody was exit 0 (the
+  // printers buffer it) or exit 1 (fmt's own error), and a script took the empty result.
+  for (const std::string args :
+       {"integrators", "integrators --table ARKODE_SDIRK_2_1_2", "fabrics", "--version"}) {
+    const std::string cmd = std::string(DRAPELAB_EXE) + " " + args + " > /dev/full 2> /dev/null";
+    const int status = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(status)) << args;
+    EXPECT_EQ(WEXITSTATUS(status), 4) << args;
+  }
+}
+
 TEST(Readme, TestCommandIsWhatCiRuns) {
   const std::string readme = read_text(fs::path(DRAPE_SOURCE_DIR) / "README.md");
   const std::string ci = read_text(fs::path(DRAPE_SOURCE_DIR) / ".ci" / "run");
