@@ -20,6 +20,14 @@ constexpr double tolerance = 1e-10;
 // refused.
 constexpr double max_coefficient = 1e3;
 
+// ARKODE's own tables have at most 8 stages; a user table of thousands (a 3000-stage identity
+// took 1.7 GB) is no method anyone studies.
+constexpr std::size_t max_stages = 64;
+
+// ARKODE counts a stage implicit when |A_ii| exceeds 1e-12 (arkStep_CheckButcherTables) and
+// refuses a table with none only when the run starts.
+constexpr double implicit_diagonal = 1e-12;
+
 bool near(double value, double expected) { return std::abs(value - expected) <= tolerance; }
 
 double sum(const std::vector<double>& values) {
@@ -77,6 +85,9 @@ ButcherTableau read_butcher_tableau(const nlohmann::json& object, const std::str
   t.c = coefficients(in, "c");
   const std::size_t s = t.c.size();
   if (s == 0) throw in.error("c", "must hold at least one node");
+  if (s > max_stages)
+    throw in.error("c", "has " + std::to_string(s) + " nodes, more than the limit of " +
+                            std::to_string(max_stages) + " stages");
   const std::vector<double> flat = read_matrix_rows(in, s);
   t.A.assign(s, std::vector<double>(s));
   for (std::size_t i = 0; i < s; ++i)
@@ -86,12 +97,11 @@ ButcherTableau read_butcher_tableau(const nlohmann::json& object, const std::str
       if (t.A[i][j] != 0.0)
         throw in.error("A", "must be lower triangular for arkode-dirk (row " + std::to_string(i) +
                                 ", column " + std::to_string(j) + " is not 0)");
-  // ARKODE refuses a DIRK table without an implicit stage only when the run starts (exit 3).
   bool implicit = false;
-  for (std::size_t i = 0; i < s; ++i) implicit = implicit || t.A[i][i] != 0.0;
+  for (std::size_t i = 0; i < s; ++i) implicit = implicit || std::abs(t.A[i][i]) > implicit_diagonal;
   if (!implicit)
-    throw in.error("A", "has only zeros on its diagonal: that is an explicit method, and "
-                        "arkode-dirk needs at least one implicit stage");
+    throw in.error("A", "has no diagonal entry beyond 1e-12 in magnitude: that is an explicit "
+                        "method to ARKODE, and arkode-dirk needs at least one implicit stage");
   for (std::size_t i = 0; i < s; ++i) {
     double row = 0.0;
     for (const double a : t.A[i]) row += a;

@@ -51,8 +51,18 @@ TEST(ButcherTableau, InconsistentTablesNameTheirField) {
   EXPECT_NE(error_of(t).find("integrator.table.p"), std::string::npos) << error_of(t);
   // No implicit stage: ARKODE refused it only when the run started.
   t = {{"c", {0.0, 0.0}}, {"A", {{0.0, 0.0}, {0.0, 0.0}}}, {"b", {0.5, 0.5}}};
-  EXPECT_EQ(error_of(t), "scene.json: integrator.table.A: has only zeros on its diagonal: that is "
-                         "an explicit method, and arkode-dirk needs at least one implicit stage");
+  const std::string explicit_method =
+      "scene.json: integrator.table.A: has no diagonal entry beyond 1e-12 in magnitude: that is an "
+      "explicit method to ARKODE, and arkode-dirk needs at least one implicit stage";
+  EXPECT_EQ(error_of(t), explicit_method);
+  // Nor does a diagonal at or below 1e-12, which ARKODE counts as explicit (ARK_ILL_INPUT).
+  t = {{"c", {1e-300}}, {"A", {{1e-300}}}, {"b", {1.0}}};
+  EXPECT_EQ(error_of(t), explicit_method);
+  t = {{"c", {1e-12}}, {"A", {{1e-12}}}, {"b", {1.0}}};
+  EXPECT_EQ(error_of(t), explicit_method);
+  // Stages are bounded: 65 is refused before A is read.
+  t = {{"c", std::vector<double>(65, 1.0)}, {"A", nlohmann::json::array()}, {"b", {1.0}}};
+  EXPECT_EQ(error_of(t), "scene.json: integrator.table.c: has 65 nodes, more than the limit of 64 stages");
   // An explicit first stage (ESDIRK) is diagonally implicit.
   t = {{"c", {0.0, 1.0}}, {"A", {{0.0, 0.0}, {0.5, 0.5}}}, {"b", {0.5, 0.5}}};
   EXPECT_EQ(error_of(t), "no error");
