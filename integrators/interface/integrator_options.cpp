@@ -57,6 +57,15 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
     throw in.error("adaptive", "integrator '" + o.name + "' has no adaptive steps");
   o.dt = o.adaptive ? in.number("dt", 0.0) : in.number("dt");
   if (!o.adaptive || in.has("dt")) in.positive("dt", o.dt);
+  // A choice given as "" is refused: leaving the key out takes the default, and an empty value
+  // is mostly a failed command substitution (--set integrator.table="$(...)") that would
+  // otherwise run the default method under the name of another.
+  const auto choice = [&in](const std::string& key, const std::string& current) {
+    const std::string value = in.string(key, current);
+    if (in.has(key) && value.empty())
+      throw in.error(key, "must not be empty (leave the key out for the default)");
+    return value;
+  };
   if (in.has("table") && object.at("table").is_object()) {
     if (o.name != "arkode-dirk")
       throw in.error("table", "an inline Butcher table is for arkode-dirk only");
@@ -66,25 +75,25 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
       throw InputError(file, in.field("table") + ".d",
                        "adaptive steps need an embedded method: give its weights d");
   } else {
-    o.table = in.string("table", o.table);
+    o.table = choice("table", o.table);
   }
   o.rtol = in.positive("rtol", in.number("rtol", o.rtol));
   o.atol = in.positive("atol", in.number("atol", o.atol));
   o.max_dt = in.non_negative("max_dt", in.number("max_dt", o.max_dt));
-  o.linear_solver = in.string("linear_solver", o.linear_solver);
+  o.linear_solver = choice("linear_solver", o.linear_solver);
   o.max_newton_iters = in.integer("max_newton_iters", o.max_newton_iters);
   if (in.has("max_newton_iters") && o.max_newton_iters < 1)
     throw in.error("max_newton_iters", "must be at least 1");
-  o.nonlinear_solver = in.string("nonlinear_solver", o.nonlinear_solver);
+  o.nonlinear_solver = choice("nonlinear_solver", o.nonlinear_solver);
   if (!o.nonlinear_solver.empty() && o.nonlinear_solver != "line-search" &&
       o.nonlinear_solver != "newton")
     throw in.error("nonlinear_solver", "unknown nonlinear solver '" + o.nonlinear_solver +
                                            "' (one of: line-search, newton)");
-  o.imex_split = in.string("imex_split", o.imex_split);
+  o.imex_split = choice("imex_split", o.imex_split);
   if (!o.imex_split.empty() && o.imex_split != "springs" && o.imex_split != "springs+collision")
     throw in.error("imex_split", "unknown split '" + o.imex_split +
                                      "' (one of: springs, springs+collision)");
-  o.solve = in.string("solve", o.solve);
+  o.solve = choice("solve", o.solve);
   if (!o.solve.empty() && o.solve != "linearised" && o.solve != "converged")
     throw in.error("solve", "unknown solve '" + o.solve + "' (one of: linearised, converged)");
   o.max_step_halvings = in.integer("max_step_halvings", o.max_step_halvings);

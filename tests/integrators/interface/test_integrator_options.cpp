@@ -55,6 +55,22 @@ TEST(IntegratorOptions, MaxStepsIsACheckedInteger) {
                          "1000000000000, got 0");
 }
 
+TEST(IntegratorOptions, AnEmptyChoiceIsRefusedNotTakenAsTheDefault) {
+  // "" came mostly from a failed command substitution, --set integrator.table="$(...)", and ran
+  // the default under the name of another.
+  for (const auto& [name, key] :
+       std::vector<std::pair<std::string, std::string>>{{"arkode-dirk", "table"},
+                                                        {"arkode-dirk", "linear_solver"},
+                                                        {"arkode-dirk", "nonlinear_solver"},
+                                                        {"arkode-imex", "imex_split"},
+                                                        {"implicit-euler", "solve"}}) {
+    const nlohmann::json o = {{"name", name}, {"dt", 1e-3}, {key, ""}};
+    EXPECT_EQ(error_of(o), "scene.json: integrator." + key +
+                               ": must not be empty (leave the key out for the default)")
+        << key;
+  }
+}
+
 // A key that the chosen integrator would ignore is an error naming it, like an unknown key.
 TEST(IntegratorOptions, KeysTheIntegratorDoesNotReadAreRejected) {
   const struct {
