@@ -11,6 +11,26 @@ inline std::string shorten(const std::string& text, std::size_t limit = 200) {
   return text.size() <= limit ? text : text.substr(0, limit - 3) + "...";
 }
 
+/// `text` with its control characters written as \xNN: a message quotes input, and a NUL in a
+/// key ended the C string what() returns (the rest of the message was lost) while other
+/// control bytes reached the terminal as they were.
+inline std::string printable(const std::string& text) {
+  static const char* const hex = "0123456789abcdef";
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte != 0x7f) {
+      out += c;
+    } else {
+      out += "\\x";
+      out += hex[byte >> 4];
+      out += hex[byte & 0xf];
+    }
+  }
+  return out;
+}
+
 /// Bad input found at setup: names the file and the field (full dotted path) or line.
 class InputError : public std::runtime_error {
  public:
@@ -30,7 +50,7 @@ class InputError : public std::runtime_error {
                             const std::string& message) {
     std::string where = file.empty() ? std::string("<input>") : file;
     if (!field.empty()) where += ": " + shorten(field);
-    return where + ": " + shorten(message, 1000);
+    return printable(where + ": " + shorten(message, 1000));
   }
   std::string m_file;
   std::string m_field;

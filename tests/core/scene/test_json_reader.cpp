@@ -38,6 +38,10 @@ TEST(JsonReader, ErrorsNameFileAndFullPath) {
   JsonReader big(huge, "f.json", "cloth");
   EXPECT_EQ(input_error_message([&] { big.integer("rows"); }),
             "f.json: cloth.rows: integer out of range: 10000000000");
+  // A control character in a key is written as \xNN: a NUL ended the message where it stood.
+  const nlohmann::json odd = {{std::string("a\0b\x1b", 4), 1}};
+  JsonReader with_odd(odd, "f.json", "cloth");
+  EXPECT_EQ(input_error_message([&] { with_odd.finish(); }), "f.json: cloth.a\\x00b\\x1b: unknown key");
 }
 
 TEST(JsonReader, MissingAndBrokenFilesNameTheFile) {
