@@ -42,6 +42,8 @@ TEST(JsonReader, ErrorsNameFileAndFullPath) {
   const nlohmann::json odd = {{std::string("a\0b\x1b", 4), 1}};
   JsonReader with_odd(odd, "f.json", "cloth");
   EXPECT_EQ(input_error_message([&] { with_odd.finish(); }), "f.json: cloth.a\\x00b\\x1b: unknown key");
+  // So is a byte of no UTF-8 sequence; valid UTF-8 stays as it is.
+  EXPECT_EQ(printable("caf\xc3\xa9 \xff\xc3("), "caf\xc3\xa9 \\xff\\xc3(");
 }
 
 TEST(JsonReader, MissingAndBrokenFilesNameTheFile) {
