@@ -334,6 +334,17 @@ Scene parse_scene(const nlohmann::json& source, const std::string& file,
   return s;
 }
 
+void check_distinct_overrides(const std::vector<std::string>& overrides) {
+  const auto path_of = [](const std::string& assignment) {
+    return assignment.substr(0, assignment.find('='));
+  };
+  for (std::size_t k = 0; k < overrides.size(); ++k)
+    for (std::size_t j = 0; j < k; ++j)
+      if (path_of(overrides[j]) == path_of(overrides[k]))
+        throw InputError("--set " + shorten(overrides[k]), path_of(overrides[k]),
+                         "given twice (also --set " + shorten(overrides[j]) + ")");
+}
+
 Scene load_scene(const std::string& file, const std::vector<std::string>& overrides) {
   nlohmann::json source = read_json_file(file);
   for (const auto& assignment : overrides) apply_override(source, assignment);

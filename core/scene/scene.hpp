@@ -83,12 +83,17 @@ Scene parse_scene(const nlohmann::json& source, const std::string& file,
 /// Reads a scene file, applies the overrides in order, and parses it.
 Scene load_scene(const std::string& file, const std::vector<std::string>& overrides = {});
 
-/// Calls use(load_scene(file, overrides)) for a command line's --set arguments: an InputError
+/// Throws InputError naming the second of two --set arguments with the same key path: one of
+/// them would be dropped without a word (they apply in order, the last winning).
+void check_distinct_overrides(const std::vector<std::string>& overrides);
+/// Calls use(load_scene(file, overrides)) for a command line's --set arguments (each key path
+/// once): an InputError
 /// in a value a --set gave (while loading, or while `use` builds from the scene) names that
 /// argument, not the scene file it was applied to.
 template <class Use>
 auto with_command_line_overrides(const std::string& file,
                                  const std::vector<std::string>& overrides, Use use) {
+  check_distinct_overrides(overrides);
   try {
     return use(load_scene(file, overrides));
   } catch (const InputError& e) {

@@ -326,6 +326,11 @@ TEST(DrapelabHarden, AnErrorInASetValueNamesTheArgumentNotTheScene) {
   r = drapelab("run " + scene + " --out " + out.string() + " --set duration=-1 --set cloth.rows=6");
   EXPECT_NE(r.err.find("--set duration=-1: duration: must not be negative"), std::string::npos)
       << r.err;
+  // The same key twice: one value would be dropped without a word.
+  r = drapelab("run " + scene + " --out " + out.string() + " --set duration=0.01 --set duration=0.02");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "drapelab: error: --set duration=0.02: duration: given twice (also --set "
+                   "duration=0.01)\n");
 }
 
 TEST(DrapelabHarden, AFailedWriteStopsTheRunWithExitFour) {
