@@ -62,9 +62,11 @@ TEST(ViewCommand, RefusesAnOutThatIsTheExperimentsOwnFile) {
 TEST(ViewCommand, AFolderNameThatIsNotUtf8IsNamed) {
   const fs::path run = testing::fresh_folder("utf8") / "run\xff";
   fs::copy(testing::tiny_run("utf8_run"), run);
+  // The message shows the byte that is no UTF-8 as \xff (printable(), input_error.hpp).
   EXPECT_EQ(view_error(run, run.parent_path() / "page.html"),
-            run.string() + ": the folder's name is not valid UTF-8, which the page needs to name "
-                           "the run: rename the folder");
+            (run.parent_path() / "run").string() + "\\xff: the folder's name is not valid UTF-8, "
+                                                   "which the page needs to name the run: rename "
+                                                   "the folder");
 }
 
 }  // namespace
