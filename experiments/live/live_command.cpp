@@ -116,6 +116,25 @@ void serve_hand(httplib::Server& server, LiveSession& session) {
   });
 }
 
+// The exit status of a session that ended with `status` (LiveSession::run).
+int exit_status_of(const std::string& status) {
+  return status == "ok" || status == "stopped" ? exit_ok : exit_diverged;
+}
+
+// Prints why the command failed and returns its exit status: 4 for a failed write, 2 for bad
+// input (anything else the setup refuses).
+int report_failure(const std::exception_ptr& failure) {
+  try {
+    std::rethrow_exception(failure);
+  } catch (const OutputError& e) {
+    std::cerr << "drapelab: error: " << e.what() << "\n";
+    return exit_output;
+  } catch (const std::exception& e) {
+    std::cerr << "drapelab: error: " << e.what() << "\n";
+    return exit_input;
+  }
+}
+
 int live(const LiveOptions& o) {
   check_options(o);
   // Both ports are taken before the session clears --out: a port in use must not cost the
@@ -207,18 +226,7 @@ int live(const LiveOptions& o) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   if (!listened) {
     fmt::print(stderr, "drapelab live: a client still holds a request open; ending without it\n");
-    int code = status == "ok" || status == "stopped" ? exit_ok : exit_diverged;
-    if (failure) {
-      try {
-        std::rethrow_exception(failure);
-      } catch (const OutputError& e) {
-        fmt::print(stderr, "drapelab: error: {}\n", e.what());
-        code = exit_output;
-      } catch (const std::exception& e) {
-        fmt::print(stderr, "drapelab: error: {}\n", e.what());
-        code = exit_input;
-      }
-    }
+    const int code = failure ? report_failure(failure) : exit_status_of(status);
     std::fflush(stdout);
     std::fflush(stderr);
     std::_Exit(code);
@@ -229,7 +237,7 @@ int live(const LiveOptions& o) {
     fmt::print("drapelab live: sensor bridge: {} frames, {} malformed lines ignored\n",
                sensor->frames(), sensor->malformed());
   fmt::print("drapelab live: {} ({}/summary.json)\n", status, o.out_dir);
-  return status == "ok" || status == "stopped" ? exit_ok : exit_diverged;
+  return exit_status_of(status);
 }
 
 }  // namespace
@@ -260,12 +268,8 @@ void add_live_command(CLI::App& app) {
     int code = exit_ok;
     try {
       code = live(*o);
-    } catch (const OutputError& e) {
-      std::cerr << "drapelab: error: " << e.what() << "\n";
-      throw CLI::RuntimeError(exit_output);
-    } catch (const std::exception& e) {
-      std::cerr << "drapelab: error: " << e.what() << "\n";
-      throw CLI::RuntimeError(exit_input);
+    } catch (const std::exception&) {
+      code = report_failure(std::current_exception());
     }
     throw CLI::RuntimeError(code);
   });

@@ -74,12 +74,12 @@ StoredResult read_result(const fs::path& dir, const std::string& id) {
 // as read_result: a folder whose run.json is not the run's identity (edited, or copied from
 // another run) holds no result of it, neither for resume nor for merge.
 StoredResult finished_run(const fs::path& dir, const nlohmann::json& planned) {
-  const auto spec = read_json_if_present(dir / experiment_run_file::identity);
+  const fs::path file = dir / experiment_run_file::identity;
+  const auto spec = read_json_if_present(file);
   if (spec && *spec != run_identity(planned))
-    return {std::nullopt, (dir / experiment_run_file::identity).string() + ": is not this run of the plan"};
+    return {std::nullopt, file.string() + ": is not this run of the plan"};
   StoredResult result = read_result(dir, planned["id"].get<std::string>());
-  if (result.row && !spec)
-    return {std::nullopt, (dir / experiment_run_file::identity).string() + ": missing or unreadable"};
+  if (result.row && !spec) return {std::nullopt, file.string() + ": missing or unreadable"};
   return result;
 }
 
