@@ -21,8 +21,11 @@ namespace drape {
 
 namespace {
 
-// -M^-1 dF/dx as Spectra's matrix operation: the exact Jacobian's product, its fixed rows zeroed
-// (their columns meet only zeros in a start vector without fixed components, and stay so).
+// -dF/dx as Spectra's matrix operation: the exact Jacobian's product, its fixed rows zeroed
+// (their columns meet only zeros in a start vector without fixed components, and stay so). The
+// particles share one mass, so -M^-1 dF/dx has the same eigenvectors and eigenvalues divided by
+// it; dividing afterwards keeps Arnoldi's arithmetic at the forces' scale, where a tiny mass
+// (1e-300 kg) made the Krylov vectors' norms overflow and the Schur decomposition fail.
 class StiffnessOperator {
  public:
   using Scalar = double;
@@ -40,7 +43,7 @@ class StiffnessOperator {
   void perform_op(const double* in, double* out) const {
     m_in = Eigen::Map<const Eigen::VectorXd>(in, m_x.size());
     m_system.force_jacobian_times(m_x, m_v, m_in, m_zero, m_out, false);
-    Eigen::Map<Eigen::VectorXd>(out, m_x.size()) = m_out / -m_system.particle_mass();
+    Eigen::Map<Eigen::VectorXd>(out, m_x.size()) = -m_out;
     if (m_after_product) m_after_product(++m_products);
   }
 
@@ -90,18 +93,22 @@ ExplicitStabilityLimit explicit_stability_limit(const ClothSystem& system, Const
   if (solver.info() != Spectra::CompInfo::Successful)
     throw std::runtime_error("explicit_stability_limit: Arnoldi's method did not converge");
   limit.jacobian_products = static_cast<int>(solver.num_operations());
-  const double lambda = solver.eigenvalues()[0].real();  // omega^2
-  limit.omega2_imaginary = solver.eigenvalues()[0].imag();
+  const double mass = system.particle_mass();
+  const double lambda = solver.eigenvalues()[0].real() / mass;  // omega^2
+  limit.omega2_imaginary = solver.eigenvalues()[0].imag() / mass;
   Eigen::VectorXd u = solver.eigenvectors().col(0).real();
   u.normalize();
   Eigen::VectorXd w(n3);
   system.force_jacobian_times(x, v, Eigen::VectorXd::Zero(n3), u, w, false);
-  limit.damping_rate = 0.0 - u.dot(w) / system.particle_mass();  // +0, not -0, without damping
+  limit.damping_rate = 0.0 - u.dot(w) / mass;  // +0, not -0, without damping
   limit.omega = std::sqrt(std::max(lambda, 0.0));
   const double c = limit.damping_rate;
   limit.undamped = limit.omega > 0.0 ? 2.0 / limit.omega : none;
-  // The positive root of h^2 omega^2 + 2 h c - 4 = 0.
-  limit.damped = lambda > 0.0 ? (-c + std::sqrt(c * c + 4.0 * lambda)) / lambda : none;
+  // The positive root of h^2 omega^2 + 2 h c - 4 = 0, (-c + sqrt(c^2 + 4 omega^2)) / omega^2,
+  // written as 4 / (c + sqrt(c^2 + 4 omega^2)): no cancellation when c dominates, and hypot
+  // keeps c^2 from overflowing for a very light cloth.
+  limit.damped =
+      lambda > 0.0 ? 4.0 / (c + std::hypot(c, 2.0 * std::sqrt(lambda))) : none;
   return limit;
 }
 

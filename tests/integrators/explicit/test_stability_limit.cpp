@@ -20,8 +20,9 @@ namespace {
 // (c_s / k) times the stiffness one, so every mode of omega has the damping rate
 // c = (c_s / k) omega^2.
 constexpr double c_spring = 0.05;
-std::unique_ptr<ClothSystem> resting_cloth() {
+std::unique_ptr<ClothSystem> resting_cloth(double mass_factor = 1.0) {
   ClothParams p = testing::small_cloth(5, 5);
+  p.particle_mass *= mass_factor;
   p.k_shear = 0.0;
   p.k_bending = 0.0;
   p.damping_spring = c_spring;
@@ -139,6 +140,28 @@ TEST(StabilityLimit, TheEigensolverFindsTheFastestModeAndItsBound) {
   ASSERT_EQ(counts.size(), static_cast<std::size_t>(limit.jacobian_products));
   for (std::size_t k = 0; k < counts.size(); ++k) EXPECT_EQ(counts[k], static_cast<long>(k) + 1);
   EXPECT_EQ(watched.omega, limit.omega);
+}
+
+// The eigenvalues of -M^-1 dF/dx are those of -dF/dx over the one particle mass: a cloth of
+// 1e-300 kg particles has omega^2 1e300 times larger and its damping rate too, and the limit is
+// found (Arnoldi at the forces' scale), where dividing by the mass inside the product overflowed
+// the Krylov vectors' norms and failed the Schur decomposition.
+TEST(StabilityLimit, ATinyParticleMassScalesTheModesInsteadOfOverflowing) {
+  const auto s = resting_cloth();
+  const Eigen::VectorXd y = s->initial_state(0.0);
+  const Eigen::Index n3 = y.size() / 2;
+  const ExplicitStabilityLimit limit = explicit_stability_limit(*s, y.head(n3), y.tail(n3));
+  constexpr double factor = 1e-300;
+  const auto light = resting_cloth(factor);
+  const ExplicitStabilityLimit scaled = explicit_stability_limit(*light, y.head(n3), y.tail(n3));
+  EXPECT_NEAR(scaled.omega, limit.omega / std::sqrt(factor), 1e-9 * scaled.omega);
+  EXPECT_NEAR(scaled.damping_rate, limit.damping_rate / factor, 1e-8 * scaled.damping_rate);
+  // The damped bound is the positive root of h^2 omega^2 + 2 h c = 4; here the damping's term
+  // dominates (c scales as 1 / m, omega as 1 / sqrt(m)), so h is about 2 / c, and c^2 is beyond
+  // the doubles' range.
+  const double h = scaled.damped;
+  EXPECT_NEAR(h * h * scaled.omega * scaled.omega + 2.0 * h * scaled.damping_rate, 4.0, 1e-12);
+  EXPECT_NEAR(h, 2.0 / scaled.damping_rate, 1e-6 * h);
 }
 
 }  // namespace
