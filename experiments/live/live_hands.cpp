@@ -43,16 +43,22 @@ double LiveHands::hand_limit(Hand hand, double next_sample) const {
   return before->t;
 }
 
-void LiveHands::sample(double now, HandTrack& track) {
+void LiveHands::sample(double now, double wanted, HandTrack& track) {
+  constexpr double infinity = std::numeric_limits<double>::infinity();
   HandFrame frame;
-  // A run that cannot keep up sits at limit() = (the sample before the last) - margin; if it
-  // did not move since the last sample, now + lead is that sample's time again, and without a
-  // later sample the limit would never move: the run would stop for good. A sample a margin
-  // after the last one moves the limit past `now` (it changes the track only after the old last
-  // sample, which is ahead of the simulation).
-  frame.t = m_frames.empty() ? now + lead
-                             : std::max(now + lead, m_frames.back().t + std::max(m_margin, lead / 100));
-  {
+  frame.t = now + lead;
+  if (!m_frames.empty() && frame.t <= m_frames.back().t) {
+    // The last frame is still ahead of now + lead: a run that cannot keep up, or one whose step
+    // (the margin) is longer than the lead. If the track lets the loop go where it wants, no
+    // frame: the latest hands wait for a later turn, so that frames never run ahead of the
+    // simulation by more than lead plus a spacing (a frame a spacing ahead on every 1/30 s turn
+    // outran a run of steps above 1/30 s without bound). If the track holds the loop back,
+    // (limit() = the frame before the last, minus the margin), a frame a spacing after the last
+    // moves the limit on; without it a run at the limit would stop for good.
+    // The track is rebuilt either way: it takes the keys added since the last turn.
+    frame.t = m_limit >= wanted ? -infinity : m_frames.back().t + std::max(m_margin, lead / 100);
+  }
+  if (frame.t > -infinity) {
     std::lock_guard<std::mutex> lock(m_mutex);
     frame.left = m_latest[0];
     frame.right = m_latest[1];

@@ -27,9 +27,11 @@ class LiveHands {
   void set(Hand hand, std::optional<HandSample> sample);
   /// A key pressed at scene time t (simulation thread).
   void add_key(double t, const std::string& key);
-  /// Simulation thread, between advances at scene time `now`: adds a frame with the latest hands
-  /// at `now + lead` and rebuilds `track` from every frame and key.
-  void sample(double now, HandTrack& track);
+  /// Simulation thread, between advances at scene time `now`, before advancing towards `wanted`:
+  /// adds a frame with the latest hands at `now + lead` (or one spacing after the last frame
+  /// when that is not later and the track holds the advance back) and rebuilds `track` from
+  /// every frame and key.
+  void sample(double now, double wanted, HandTrack& track);
   /// The time the simulation may advance to: before the stretch of the track that the next
   /// sample can still change (+infinity when no hand constrains it).
   double limit() const { return m_limit; }

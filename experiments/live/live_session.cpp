@@ -86,7 +86,7 @@ LiveSession::LiveSession(Scene scene, std::filesystem::path out_dir, bool live_h
     // adaptive method's steps are not known ahead, 10 ms is taken for them (docs/live.md).
     const double margin = m_run->options().adaptive ? 0.01 : m_run->options().dt;
     m_live_hands = std::make_unique<LiveHands>(input.config.track, std::move(keys), margin);
-    m_live_hands->sample(0.0, input.track);
+    m_live_hands->sample(0.0, 0.0, input.track);
   }
   m_scene_json = page_scene_json(m_run->system(), m_scene, m_live_hands != nullptr);
   // Built (and so validated) first; then no file of an earlier run may stay beside this one's.
@@ -215,7 +215,7 @@ std::string LiveSession::run() {
     // clock in one long advance.
     double target = std::min(wall, simulation.time() + frame_interval);
     if (m_live_hands) {
-      m_live_hands->sample(simulation.time(), m_run->input()->track);
+      m_live_hands->sample(simulation.time(), target, m_run->input()->track);
       target = std::min(target, m_live_hands->limit());
     }
     running = simulation.advance(target);

@@ -4,19 +4,22 @@
 #include "experiments/live/live_hands.hpp"
 
 #include <cmath>
+#include <limits>
 #include <gtest/gtest.h>
 
 namespace drape {
 namespace {
 
 constexpr double margin = 2e-4;
+// A loop that wants to go as far as the hands allow (the wall clock ahead of it).
+constexpr double ahead = std::numeric_limits<double>::infinity();
 
 HandSample at(double x, double y, double z) { return HandSample{Vec3(x, y, z), false}; }
 
 TEST(LiveHands, NoHandNoLimitNoFrames) {
   LiveHands hands(TrackPolicy{}, {}, margin);
   HandTrack track;
-  hands.sample(0.0, track);
+  hands.sample(0.0, ahead, track);
   EXPECT_TRUE(std::isinf(hands.limit()));
   EXPECT_TRUE(hands.recording().empty());
   EXPECT_FALSE(track.motion(Hand::Right, 1.0));
@@ -26,16 +29,16 @@ TEST(LiveHands, SamplesLeadTheSimulationAndLimitIsTheSampleBeforeTheLast) {
   LiveHands hands(TrackPolicy{}, {}, margin);
   HandTrack track;
   hands.set(Hand::Right, at(0.1, 1.0, 0.3));
-  hands.sample(0.0, track);
+  hands.sample(0.0, ahead, track);
   EXPECT_DOUBLE_EQ(hands.limit(), LiveHands::lead - margin);  // one sample: its own time
-  hands.sample(0.03, track);
+  hands.sample(0.03, ahead, track);
   EXPECT_DOUBLE_EQ(hands.limit(), LiveHands::lead - margin);  // the sample before the last
   // No time passed (a run that cannot keep up, sitting at the limit): a knot one spacing (the
   // larger of the margin and lead / 100) after the last, so that the limit moves on.
-  hands.sample(0.03, track);
+  hands.sample(0.03, ahead, track);
   const double spacing = std::max(margin, LiveHands::lead / 100);
   EXPECT_DOUBLE_EQ(hands.limit(), 0.03 + LiveHands::lead - margin);
-  hands.sample(0.06, track);
+  hands.sample(0.06, ahead, track);
   EXPECT_DOUBLE_EQ(hands.limit(), 0.03 + LiveHands::lead + spacing - margin);
   const auto frames = hands.recording();
   ASSERT_EQ(frames.size(), 4u);
@@ -55,7 +58,7 @@ TEST(LiveHands, ARunAtTheLimitKeepsMoving) {
   hands.set(Hand::Right, at(0.1, 1.0, 0.3));
   double now = 0.0;
   for (int turn = 0; turn < 40; ++turn) {
-    hands.sample(now, track);
+    hands.sample(now, ahead, track);
     ASSERT_GE(hands.limit(), now) << "turn " << turn;
     now = hands.limit();  // as far as the hands allow, no overshoot
   }
@@ -75,7 +78,7 @@ TEST(LiveHands, NewSampleLeavesTheTrackBeforeTheLimitUnchanged) {
   for (int k = 0; k < 40; ++k) {
     hands.set(Hand::Right, at(0.1 * std::sin(0.7 * k), 1.0 + 0.05 * std::cos(1.3 * k), 0.3));
     if (k == 20) hands.set(Hand::Left, std::nullopt);  // the left hand is lost: a gap
-    hands.sample(now, after);
+    hands.sample(now, ahead, after);
     if (k > 0) {
       const double limit = previous_limit + margin;
       for (double t = 0.0; t <= limit; t += 0.0037)
@@ -95,19 +98,43 @@ TEST(LiveHands, NewSampleLeavesTheTrackBeforeTheLimitUnchanged) {
   }
 }
 
+// The live loop (LiveSession::run) with fixed steps longer than its 1/30 s turn: each turn wants
+// to reach min(wall clock, now + 1/30 s), the hands' limit bounds it, and the advance ends on
+// the first step at or past it. The hand's frames must stay within lead plus a spacing of the
+// simulation (a frame a step ahead on every turn let a hand's latency grow without bound), and
+// the run must keep up with the wall clock.
+TEST(LiveHands, FramesStayNearTheSimulationWhenItsStepIsLongerThanATurn) {
+  for (const double dt : {0.05, 0.1, 0.25}) {
+    LiveHands hands(TrackPolicy{}, {}, dt);
+    HandTrack track;
+    hands.set(Hand::Right, at(0.1, 1.0, 0.3));
+    constexpr double turn = 1.0 / 30.0;
+    double now = 0.0, wall = 0.0;
+    for (int k = 0; k < 600; ++k, wall += turn) {
+      const double wanted = std::min(wall, now + turn);
+      hands.sample(now, wanted, track);
+      const double target = std::min(wanted, hands.limit());
+      if (target > now) now += dt * std::ceil((target - now) / dt - 1e-9);
+      const double last_frame = hands.recording().back().t;
+      ASSERT_LE(last_frame - now, LiveHands::lead + 2 * dt + 1e-9) << "dt " << dt << ", turn " << k;
+    }
+    EXPECT_GT(now, wall - LiveHands::lead - 3 * dt) << "dt " << dt;
+  }
+}
+
 TEST(LiveHands, AHandGoneLongerThanMaxGapNoLongerLimits) {
   TrackPolicy policy;
   policy.max_gap = 0.15;
   LiveHands hands(policy, {}, margin);
   HandTrack track;
   hands.set(Hand::Right, at(0.0, 1.0, 0.3));
-  hands.sample(0.0, track);
-  hands.sample(0.05, track);
+  hands.sample(0.0, ahead, track);
+  hands.sample(0.05, ahead, track);
   hands.set(Hand::Right, std::nullopt);
-  hands.sample(0.1, track);  // no hand: no frame; the last sample (0.15) still limits
+  hands.sample(0.1, ahead, track);  // no hand: no frame; the last sample (0.15) still limits
   EXPECT_DOUBLE_EQ(hands.limit(), LiveHands::lead - margin);
   hands.set(Hand::Left, at(0.0, 1.0, 0.3));
-  hands.sample(0.2, track);  // 0.3 - 0.15 = max_gap: any later right sample starts a new run
+  hands.sample(0.2, ahead, track);  // 0.3 - 0.15 = max_gap: any later right sample starts a new run
   EXPECT_DOUBLE_EQ(hands.limit(), 0.3 - margin);  // the left hand's only sample
 }
 
@@ -118,10 +145,10 @@ TEST(LiveHands, RecordingMergesKeysIntoFramesInTimeOrder) {
   LiveHands hands(TrackPolicy{}, {scene_key}, margin);
   HandTrack track;
   hands.set(Hand::Right, at(0.0, 1.0, 0.3));
-  hands.sample(0.0, track);  // a frame at 0.1
+  hands.sample(0.0, ahead, track);  // a frame at 0.1
   hands.add_key(0.1, "r");   // at the frame's time: merged into it
   hands.add_key(0.05, "a");
-  hands.sample(0.02, track);  // a frame at 0.12
+  hands.sample(0.02, ahead, track);  // a frame at 0.12
   const auto frames = hands.recording();
   ASSERT_EQ(frames.size(), 4u);
   EXPECT_DOUBLE_EQ(frames[0].t, 0.05);
