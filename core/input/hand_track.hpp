@@ -114,6 +114,8 @@ class HandTrack {
   void add_keys(const std::vector<HandFrame>& frames, const TimeMap& time);
   /// Scene times of the first and last usable sample of a hand; nullopt if it has none.
   std::optional<std::pair<double, double>> span(Hand hand) const;
+  /// Stretches of a hand's bridged samples, interpolated separately (0 without samples).
+  std::size_t runs(Hand hand) const { return curve(hand).run_end.size(); }
 
  private:
   /// The usable samples of one hand, split into runs that are interpolated separately.

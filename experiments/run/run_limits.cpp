@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "core/scene/input_error.hpp"
 #include "core/scene/scene_limits.hpp"
 
@@ -33,6 +35,43 @@ void check_run_limits(const Scene& scene, const IntegratorOptions& options,
                      "duration / dt = " + nlohmann::json(steps).dump() +
                          " steps, more than " + integrator_field + ".max_steps = " +
                          std::to_string(options.max_steps));
+}
+
+// A key changes the state at most once when pressed (release, attach, map) and once more when
+// an attach completes; after each key, and at the start, each hand can take one hold; a hold
+// pauses and resumes at most once per stretch of its hand's track.
+double event_frames_bound(const HandTrack& track) {
+  const auto keys = static_cast<double>(track.keys().size());
+  const auto runs = static_cast<double>(track.runs(Hand::Left) + track.runs(Hand::Right));
+  return 4.0 * keys + 2.0 + 2.0 * runs;
+}
+
+void check_output_rows(const Scene& scene, const IntegratorOptions& options, double event_frames) {
+  const OutputOptions& out = scene.output;
+  if (out.energy_interval == 0.0) {
+    const double steps = options.adaptive ? static_cast<double>(options.max_steps)
+                                          : std::ceil(scene.duration / options.dt);
+    if (steps + 1.0 > limits::max_output_rows)
+      throw InputError(scene.file, "output.energy_interval",
+                       fmt::format("0 writes a row of energy.csv every step: up to {:.0f} steps "
+                                   "({}), more than {:.0f} rows; give an interval",
+                                   steps, options.adaptive ? "integrator.max_steps" : "duration / integrator.dt",
+                                   limits::max_output_rows));
+  }
+  const double particles = static_cast<double>(scene.cloth.rows) * scene.cloth.cols;
+  const std::pair<const char*, double> frame_outputs[] = {
+      {"output.trace_interval", out.trace_interval},
+      {"output.vtk_interval", out.vtk_interval},
+      {"output.event_trace_interval", out.event_trace_interval}};
+  for (const auto& [field, interval] : frame_outputs) {
+    if (interval == 0.0) continue;
+    const double rows = (scene.duration / interval + 1.0 + event_frames) * particles;
+    if (rows > limits::max_output_rows)
+      throw InputError(scene.file, field,
+                       fmt::format("would write {:.4g} rows (particles x frames, with up to {:.0f} "
+                                   "frames at the input's events), more than {:.0f}",
+                                   rows, event_frames, limits::max_output_rows));
+  }
 }
 
 }  // namespace drape

@@ -32,6 +32,7 @@ SceneSimulation::SceneSimulation(const Scene& scene, const std::string& integrat
     m_system->constraints().fix_at(i, m_system->cloth().rest_positions.segment<3>(3 * i));
   }
   m_input = scene_hand_input(scene);
+  check_output_rows(scene, m_options, m_input ? event_frames_bound(m_input->track) : 0.0);
   m_manipulator = std::make_unique<Manipulator>(*m_system, m_input ? &m_input->track : nullptr,
                                                 scene.manipulation);
   m_integrator = make_integrator(m_options, *m_system);

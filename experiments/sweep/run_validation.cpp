@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <string>
 
@@ -9,6 +10,7 @@
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/scene.hpp"
+#include "experiments/run/run_limits.hpp"
 #include "experiments/run/scene_simulation.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "integrators/interface/integrator_options.hpp"
@@ -44,21 +46,33 @@ std::pair<std::string, std::string> override_origin(const Experiment& e, const R
 class RunInputCheck {
  public:
   void check(const Scene& scene) {
-    checked_integrator_options(scene);
+    const IntegratorOptions options = checked_integrator_options(scene);
     if (scene.restart_error.enabled())
       read_integrator_options(scene.restart_error.reference, scene.file, "restart_error.reference");
-    if (first_time("dummy", scene.dummy, scene)) scene_dummy(scene);
-    if (first_time("input", scene.input, scene)) scene_hand_input(scene);
+    if (!scene.dummy.is_null() && m_dummies.insert(key_of(scene.dummy, scene)).second)
+      scene_dummy(scene);
+    check_output_rows(scene, options, event_frames(scene));
   }
 
  private:
   // Relative paths inside the object resolve against the scene's folder, so it is part of the key.
-  bool first_time(const char* what, const nlohmann::json& object, const Scene& scene) {
-    if (object.is_null()) return false;
-    return m_built.insert(std::string(what) + scene.base_dir.string() + "\n" + object.dump()).second;
+  static std::string key_of(const nlohmann::json& object, const Scene& scene) {
+    return scene.base_dir.string() + "\n" + object.dump();
   }
 
-  std::set<std::string> m_built;
+  // The recording is read once per distinct input; its bound on event frames is kept for the
+  // output check of every run that plays it.
+  double event_frames(const Scene& scene) {
+    if (scene.input.is_null()) return 0.0;
+    const std::string key = key_of(scene.input, scene);
+    auto it = m_event_frames.find(key);
+    if (it == m_event_frames.end())
+      it = m_event_frames.emplace(key, event_frames_bound(scene_hand_input(scene)->track)).first;
+    return it->second;
+  }
+
+  std::set<std::string> m_dummies;
+  std::map<std::string, double> m_event_frames;
 };
 
 // Whether `run`'s scene with `assignments` (a subset of its own) passes the check.

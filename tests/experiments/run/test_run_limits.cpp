@@ -52,5 +52,71 @@ TEST(RunLimits, SceneSimulationChecksBeforeBuilding) {
             "integrator.max_steps = 100000000");
 }
 
+// energy.csv and hands.csv at `energy_interval: 0` get a row every step: the steps the run may
+// take (duration / dt, or max_steps for an adaptive run) bound them, and past 10^9 rows the
+// interval is refused, naming it.
+TEST(RunLimits, ARowEveryStepIsCheckedAgainstTheOutputBound) {
+  const auto rows_error = [](const std::string& integrator, double duration, double interval) {
+    Scene scene = scene_with(integrator, duration);
+    scene.output.energy_interval = interval;
+    const IntegratorOptions options = read_integrator_options(scene.integrator, scene.file, "integrator");
+    return testing::input_error_message([&] { check_output_rows(scene, options, 0.0); });
+  };
+  EXPECT_EQ(rows_error(R"({"name": "leapfrog", "dt": 1e-6, "max_steps": 1000000000000})", 2000.0, 0.0),
+            "scene.json: output.energy_interval: 0 writes a row of energy.csv every step: up to "
+            "2000000000 steps (duration / integrator.dt), more than 1000000000 rows; give an interval");
+  EXPECT_EQ(rows_error(R"({"name": "leapfrog", "dt": 1e-6, "max_steps": 1000000000000})", 2000.0, 0.01),
+            "no error");
+  EXPECT_EQ(rows_error(R"({"name": "leapfrog", "dt": 1e-6})", 100.0, 0.0), "no error");  // 10^8
+  EXPECT_EQ(rows_error(R"({"name": "arkode-erk", "adaptive": true, "max_steps": 1000000000})", 1.0, 0.0),
+            "scene.json: output.energy_interval: 0 writes a row of energy.csv every step: up to "
+            "1000000000 steps (integrator.max_steps), more than 1000000000 rows; give an interval");
+  EXPECT_EQ(rows_error(R"({"name": "arkode-erk", "adaptive": true, "max_steps": 999999999})", 1.0, 0.0),
+            "no error");
+}
+
+HandFrame frame_at(double t, std::vector<std::string> keys = {}) {
+  HandFrame f;
+  f.t = t;
+  f.right = HandSample{Vec3(0.0, 1.0, 0.3), false};
+  f.keys = std::move(keys);
+  return f;
+}
+
+// A frame at every step that ends on an event: keys (at most one change each, one more when an
+// attach completes), one hold per hand after each key and at the start, and a pause and resume
+// per stretch of a hand's track.
+TEST(RunLimits, EventFramesAreBoundedByKeysAndTrackStretches) {
+  TrackPolicy policy;
+  policy.max_gap = 0.2;
+  // Two stretches of the right hand (a gap of 1 s), three keys.
+  const HandTrack track({frame_at(0.0, {"r"}), frame_at(0.1), frame_at(1.1, {"a", "m"}), frame_at(1.2)},
+                        SensorTransform{}, TimeMap{}, policy);
+  ASSERT_EQ(track.runs(Hand::Right), 2u);
+  ASSERT_EQ(track.runs(Hand::Left), 0u);
+  EXPECT_EQ(event_frames_bound(track), 4.0 * 3 + 2 + 2 * 2);
+  EXPECT_EQ(event_frames_bound(HandTrack()), 2.0);
+}
+
+// The frame files' bound counts those event frames: a trace at one frame per run (interval =
+// duration) of a 100 x 100 cloth is 2 x 10^4 rows, and 10^5 keys make it 4 x 10^9.
+TEST(RunLimits, KeysCountInTheFrameFilesBound) {
+  auto source = nlohmann::json::parse(R"({
+    "cloth": {"rows": 100, "cols": 100, "spacing": 0.02, "origin": [0, 1.4, 0],
+              "particle_mass": 0.001, "k_structural": 20},
+    "dummy": null, "duration": 1.0, "integrator": {"name": "leapfrog", "dt": 1e-3},
+    "output": {"trace_interval": 1.0}})");
+  nlohmann::json events = nlohmann::json::array();
+  for (int k = 0; k < 100000; ++k) events.push_back({{"t", k * 1e-5}, {"keys", {"r"}}});
+  source["input"] = {{"events", events}};
+  const Scene scene = parse_scene(source, "scene.json", ".");
+  EXPECT_EQ(testing::input_error_message([&] { SceneSimulation run(scene); }),
+            "scene.json: output.trace_interval: would write 4e+09 rows (particles x frames, with "
+            "up to 400002 frames at the input's events), more than 1000000000");
+  source["input"]["events"] = nlohmann::json::array({events[0], events[1]});
+  EXPECT_EQ(testing::input_error_message([&] { SceneSimulation run(parse_scene(source, "scene.json", ".")); }),
+            "no error");
+}
+
 }  // namespace
 }  // namespace drape
