@@ -170,6 +170,10 @@ int live(const LiveOptions& o) {
     res.set_content(page, "text/html; charset=utf-8");
   });
   serve_events(server, session);
+  server.Get("/event-log", [&session](const httplib::Request&, httplib::Response& res) {
+    res.set_header("Cache-Control", "no-cache");
+    res.set_content(session.event_log().dump(), "application/json");
+  });
   serve_hand(server, session);
   server.Post("/key", [&session](const httplib::Request& req, httplib::Response& res) {
     if (req.body != "r" && req.body != "a" && req.body != "m") {

@@ -28,7 +28,9 @@
     this.cloth = null;  // the ClothScene, made at the first frame
     this.history = [];  // [wall, t] of recent frames
     this.frames = 0;
+    this.events = [];  // every event so far: the frames' newest ones, /event-log for a gap
     this.events_shown = -1;
+    this.fetching_log = false;
     this.driving = false;
     this.hand_point = null;  // where the pointer put the hand last (scene frame)
     this.sending = false;
@@ -81,9 +83,10 @@
     var positions = new Float32Array(drape.base64_bytes(f.positions).buffer);
     if (!this.cloth) this.first_frame(positions.slice());
     else this.cloth.positions.set(positions);
-    if (f.events.length !== this.events_shown) {
-      this.cloth.set_attach_targets(f.events);
-      this.show_events(f.events);
+    this.take_events(f);
+    if (this.events.length !== this.events_shown) {
+      this.cloth.set_attach_targets(this.events);
+      this.show_events(this.events);
     }
     this.cloth.show(f.t, f.fixed, f.hands.map(function (h) {
       return { name: h.hand, available: h.available, position: h.position, held: h.held, candidate: h.candidate };
@@ -108,6 +111,24 @@
     if (f.behind) behind.textContent = 'cannot keep up: ' + (f.wall - f.t).toFixed(2) + ' s behind the wall clock';
     document.getElementById('time-readout').textContent = 't = ' + f.t.toFixed(3) + ' s' +
       (spec.duration ? ' / ' + spec.duration.toFixed(3) + ' s' : '');
+  };
+
+  // A frame carries the newest events, from index f.events_from of f.event_count (the server
+  // keeps frames small however many events a run has): those after the ones known are appended;
+  // a page that missed some (opened late, or more events than a frame holds between two frames
+  // it read) fetches the whole list once.
+  Live.prototype.take_events = function (f) {
+    var known = this.events.length, self = this;
+    if (f.event_count <= known) return;
+    if (f.events_from <= known) {
+      this.events = this.events.concat(f.events.slice(known - f.events_from));
+      return;
+    }
+    if (this.fetching_log) return;
+    this.fetching_log = true;
+    fetch('/event-log').then(function (r) { return r.json(); }).then(function (log) {
+      if (log.length > self.events.length) self.events = log;
+    }).catch(function () {}).then(function () { self.fetching_log = false; });
   };
 
   Live.prototype.show_events = function (events) {

@@ -135,6 +135,11 @@ std::pair<long, std::shared_ptr<const std::string>> LiveSession::frame() const {
   return {m_frame_number, m_frame};
 }
 
+nlohmann::json LiveSession::event_log() const {
+  std::lock_guard<std::mutex> lock(m_mutex);
+  return m_event_log;
+}
+
 void LiveSession::apply_keys() {
   std::vector<std::string> keys;
   {
@@ -176,9 +181,17 @@ void LiveSession::publish(double wall, bool behind) {
                      {"position", {h.position.x(), h.position.y(), h.position.z()}},
                      {"candidate", h.candidate},
                      {"held", h.held}});
+  // The manipulator's events only grow: the new ones join the log, and the frame carries the
+  // newest frame_events with the index of the first (the page fetches /event-log for a gap).
+  const std::vector<ManipulationEvent>& all = simulation.manipulator().events();
+  const std::size_t logged = m_event_log.size();  // only this thread appends
+  nlohmann::json fresh = nlohmann::json::array();
+  for (std::size_t k = logged; k < all.size(); ++k)
+    fresh.push_back(all[k].to_json(m_run->system().cloth()));
+  const std::size_t first = all.size() > frame_events ? all.size() - frame_events : 0;
   nlohmann::json events = nlohmann::json::array();
-  for (const ManipulationEvent& e : simulation.manipulator().events())
-    events.push_back(e.to_json(m_run->system().cloth()));
+  for (std::size_t k = first; k < all.size(); ++k)
+    events.push_back(k < logged ? m_event_log[k] : fresh[k - logged]);
   const nlohmann::json frame = {{"t", simulation.time()},
                                 {"wall", wall},
                                 {"rtf", wall > 0.0 ? simulation.time() / wall : 1.0},
@@ -188,9 +201,12 @@ void LiveSession::publish(double wall, bool behind) {
                                 {"positions", base64_encode(bytes, positions.size() * sizeof(float))},
                                 {"fixed", m_run->system().constraints().fixed_particles()},
                                 {"hands", hands},
+                                {"event_count", all.size()},
+                                {"events_from", first},
                                 {"events", events}};
   auto text = std::make_shared<const std::string>(frame.dump());
   std::lock_guard<std::mutex> lock(m_mutex);
+  for (auto& e : fresh) m_event_log.push_back(std::move(e));
   m_frame = std::move(text);
   ++m_frame_number;
 }

@@ -52,6 +52,12 @@ class LiveSession {
   const std::string& scene_json() const { return m_scene_json; }
   /// The latest frame as a JSON text and its number (0 before the first).
   std::pair<long, std::shared_ptr<const std::string>> frame() const;
+  /// Every manipulation event published so far (summary.json's form), for a page that missed
+  /// some: a frame carries only the last `frame_events` of them.
+  nlohmann::json event_log() const;
+  /// Events a frame carries at most: the newest, so that a frame's size does not grow with the
+  /// run (9000 keys made every frame 814 KB).
+  static constexpr std::size_t frame_events = 32;
   /// Once run() has returned: true.
   bool finished() const { return m_finished; }
 
@@ -71,11 +77,12 @@ class LiveSession {
   std::string m_scene_json;
   std::atomic<bool> m_stop{false};
   std::atomic<bool> m_finished{false};
-  mutable std::mutex m_mutex;  ///< guards the three members below
+  mutable std::mutex m_mutex;  ///< guards the members below
   std::vector<std::string> m_pending_keys;
   long m_frame_number = 0;
   std::shared_ptr<const std::string> m_frame;
   std::vector<std::pair<double, std::string>> m_applied_keys;  ///< scene time, key
+  nlohmann::json m_event_log = nlohmann::json::array();  ///< the events published so far
 };
 
 }  // namespace drape

@@ -76,7 +76,15 @@ def key_check(driver, drapelab, source, work):
     from selenium.webdriver.common.action_chains import ActionChains
     out = work / "map"
     with LiveRun(drapelab, source / "experiments/scenes/fig6_map.json", out, "--set", "duration=60") as run:
+        # 40 maps before the page opens: its frames carry the newest 32 events, so it fetches
+        # the rest from /event-log and shows the same list as the run
+        for _ in range(40):
+            run.post("/key", "m")
+        run.wait_for(lambda f: f["event_count"] >= 41, "40 map events")
         share = check_page(driver, run)
+        wait(driver, "return drape.live.events.length >= 41", "the page's list of 41 events")
+        shown = driver.execute_script("return document.getElementById('event-list').children.length")
+        assert shown == 6, shown
         pressed_at = driver.execute_script("return drape.live.last.t")  # the scene maps at 0.01 s
         ActionChains(driver).send_keys("m").perform()
         event = wait(driver, "var f = drape.live.last; return f.events.filter(function (e) "
@@ -84,12 +92,14 @@ def key_check(driver, drapelab, source, work):
         assert event["type"] == "map", event
         errors = [e for e in driver.get_log("browser") if e["level"] == "SEVERE"]
         assert not errors, errors
+        page_events = driver.execute_script("return drape.live.events")
         code, stdout, stderr = run.stop()
         assert code == 0, (code, stdout, stderr)
         summary = json.loads((out / "summary.json").read_text())
         assert summary["status"] == "stopped", summary["status"]
         events = summary["events"]
         assert event in events, (event, events)  # at the time the page saw it
+        assert page_events == events[:len(page_events)], "the page's events are the run's"
         assert replay_events(drapelab, out, work / "map_replay") == events
         print(f"key: {share:.1%} of the canvas drawn; `m` pressed in the page -> map at "
               f"t = {event['t']:.4f} s, replayed alike")
