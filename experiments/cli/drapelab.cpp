@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <csignal>
 #include <iostream>
 
@@ -121,6 +122,12 @@ static int run_drapelab(int argc, char** argv) {
   drape::add_view_command(app);  // runs inside app.parse (docs/viewer.md)
   drape::add_live_command(app);  // runs inside app.parse (docs/viewer.md, Live mode)
 
+  // CLI11 prints the version as soon as it meets the flag and ignores everything else on the
+  // line; an argument that would be ignored is refused instead, as elsewhere.
+  if (argc > 2 && std::find(argv + 1, argv + argc, std::string("--version")) != argv + argc) {
+    std::cerr << "drapelab: error: --version takes no other arguments\n";
+    return drape::exit_input;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

@@ -135,6 +135,13 @@ TEST(DrapelabRun, MissingFileAndBadUsageExitWithTwo) {
   EXPECT_NE(r.err.find("/nonexistent/scene.json: no such file"), std::string::npos) << r.err;
   EXPECT_EQ(drapelab("run").exit_code, 2);
   EXPECT_EQ(drapelab("frobnicate").exit_code, 2);
+  // --version alone prints it; with anything else (which CLI11 would ignore) it is refused.
+  EXPECT_EQ(drapelab("--version").exit_code, 0);
+  for (const std::string args : {"--version extra", "extra --version", "--version --version"}) {
+    const Result v = drapelab(args);
+    EXPECT_EQ(v.exit_code, 2) << args;
+    EXPECT_EQ(v.err, "drapelab: error: --version takes no other arguments\n") << args;
+  }
 }
 
 TEST(DrapelabRun, DivergenceStopsWritesItsSummaryAndExitsWithThree) {
