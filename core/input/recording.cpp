@@ -151,11 +151,7 @@ void write_drapelab_recording(const Recording& recording, const std::string& fil
       << '\n';
   for (const auto& frame : recording.frames) out << frame_to_json(frame).dump() << '\n';
   out.flush();
-  if (!out) {
-    const OutputError error = write_failure(file);
-    remove_partial_file(file);
-    throw error;
-  }
+  if (!out) fail_write(file);
 }
 
 Recording read_recording(const std::string& file, RecordingFormat format) {

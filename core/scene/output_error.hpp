@@ -30,6 +30,14 @@ inline void remove_partial_file(const std::string& file) {
   if (std::filesystem::is_regular_file(file, ignored)) std::filesystem::remove(file, ignored);
 }
 
+/// A writer's one call once its stream has failed: the write_failure of `file` (errno read
+/// first), thrown after removing what the write left of it.
+[[noreturn]] inline void fail_write(const std::string& file) {
+  const OutputError error = write_failure(file);
+  remove_partial_file(file);
+  throw error;
+}
+
 /// Why `file` cannot be the file a command writes, or nothing: an empty path, or a named pipe
 /// or socket, whose opening would wait for a reader for ever (a device such as /dev/null is
 /// written like a file). A folder is for the caller to name, as it says what it expected.

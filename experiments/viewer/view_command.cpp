@@ -79,12 +79,7 @@ void view_command(const std::vector<std::string>& run_dirs, const std::string& o
   if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
   errno = 0;
   std::ofstream file(out, std::ios::binary);
-  if (!(file << page) || !file.flush()) {
-    const OutputError error = write_failure(out_file);
-    file.close();
-    remove_partial_file(out_file);  // a cut page would load as an empty viewer
-    throw error;
-  }
+  if (!(file << page) || !file.flush()) fail_write(out_file);  // a cut page would load as an empty viewer
   size_t frames = 0;
   for (const ViewerRun& run : runs) frames += run.frames.size();
   std::cout << fmt::format("drapelab view: {} ({} run{}, {} frames, {:.1f} MB)\n", out_file,
