@@ -53,13 +53,15 @@ void ReducedNewtonSolver::set_gamma(double gamma) {
   form_system();
 }
 
-template <class Visit, class FinishRow>
-void ReducedNewtonSolver::for_each_block(Visit visit, FinishRow finish_row) const {
+template <class FinishRow>
+void ReducedNewtonSolver::assemble_blocks(FinishRow finish_row) {
   const auto& fixed = m_system.constraints().mask();
   const double mass = m_system.particle_mass();
   const double g = m_gamma, g2 = m_gamma * m_gamma;
+  std::vector<Mat3>& blocks = m_matrix.blocks();
   // K's pair pattern [-J J; J -J] puts +C_e on both diagonal blocks of S and -C_e on (i, j) and
-  // (j, i). The blocks (i, j) and (j, i) sum the same springs in the same order: the same bits.
+  // (j, i): a block right of the diagonal sums its springs, and the one left of it is the same
+  // matrix, copied from the row above (the same bits as summing the same springs again).
   const auto coupling = [&](int k) {
     Mat3 sum = Mat3::Zero();
     for (int t = m_block_spring_start[static_cast<std::size_t>(k)];
@@ -69,21 +71,27 @@ void ReducedNewtonSolver::for_each_block(Visit visit, FinishRow finish_row) cons
     }
     return sum;
   };
-  const int n = static_cast<int>(m_pattern_start.size()) - 1;
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < m_matrix.rows(); ++i) {
     const auto row = static_cast<std::size_t>(i);
-    const int start = m_pattern_start[row], end = m_pattern_start[row + 1];
+    const int start = m_matrix.row_start(i), end = m_matrix.row_start(i + 1);
     if (fixed[row]) {
       // A fixed particle's row and column are dropped: its diagonal stays M and it couples to
       // nobody.
-      visit(start, Mat3(mass * Mat3::Identity()));
-      for (int k = start + 1; k < end; ++k) visit(k, Mat3(Mat3::Zero()));
+      blocks[static_cast<std::size_t>(start)] = mass * Mat3::Identity();
+      for (int k = start + 1; k < end; ++k) blocks[static_cast<std::size_t>(k)].setZero();
     } else {
-      visit(start, Mat3(mass * Mat3::Identity() - g * m_jacobian.particle_v[row] -
-                        g2 * m_jacobian.particle_x[row] + coupling(start)));
+      blocks[static_cast<std::size_t>(start)] = mass * Mat3::Identity() -
+                                                g * m_jacobian.particle_v[row] -
+                                                g2 * m_jacobian.particle_x[row] + coupling(start);
       for (int k = start + 1; k < end; ++k) {
-        const auto j = static_cast<std::size_t>(m_pattern_column[static_cast<std::size_t>(k)]);
-        visit(k, fixed[j] ? Mat3(Mat3::Zero()) : Mat3(-coupling(k)));
+        const int j = m_matrix.column(k);
+        Mat3& block = blocks[static_cast<std::size_t>(k)];
+        if (fixed[static_cast<std::size_t>(j)])
+          block.setZero();
+        else if (j < i)
+          block = blocks[static_cast<std::size_t>(m_matrix.transpose(k))];
+        else
+          block = -coupling(k);
       }
     }
     finish_row(i);
@@ -94,33 +102,20 @@ std::vector<std::vector<int>> ReducedNewtonSolver::build_gather() {
   // The pattern depends on the springs alone, so it serves every later step, whatever the fixed
   // set (fixed particles' couplings are written as zeros).
   const SpringSet& springs = m_system.cloth().springs;
-  const int n = m_system.num_particles();
-  std::vector<std::vector<int>> neighbours = spring_neighbours(springs, n);
-  m_pattern_start.assign(1, 0);
-  m_pattern_column.clear();
-  for (int i = 0; i < n; ++i) {
-    m_pattern_column.push_back(i);
-    const auto& list = neighbours[static_cast<std::size_t>(i)];
-    m_pattern_column.insert(m_pattern_column.end(), list.begin(), list.end());
-    m_pattern_start.push_back(static_cast<int>(m_pattern_column.size()));
-  }
-  const auto block_of = [&](int i, int j) {
-    const auto& list = neighbours[static_cast<std::size_t>(i)];
-    const int start = m_pattern_start[static_cast<std::size_t>(i)];
-    return static_cast<std::size_t>(
-        i == j ? start
-               : start + 1 + static_cast<int>(std::lower_bound(list.begin(), list.end(), j) -
-                                               list.begin()));
-  };
-  // Each spring joins four blocks; the lists are filled in spring order (counted, then placed).
+  std::vector<std::vector<int>> neighbours =
+      spring_neighbours(springs, m_system.num_particles());
+  m_matrix.set_pattern(neighbours);
+  // Each spring joins its two diagonal blocks and the block right of the diagonal on its pair
+  // (the one left of it is mirrored); the lists are filled in spring order (counted, then placed).
   const auto for_each_term = [&](auto&& term) {
     for (Eigen::Index e = 0; e < springs.size(); ++e) {
       const int i = springs.first[e], j = springs.second[e];
-      for (const std::size_t k : {block_of(i, i), block_of(j, j), block_of(i, j), block_of(j, i)})
-        term(k, static_cast<int>(e));
+      for (const int k : {m_matrix.find(i, i), m_matrix.find(j, j),
+                          m_matrix.find(std::min(i, j), std::max(i, j))})
+        term(static_cast<std::size_t>(k), static_cast<int>(e));
     }
   };
-  std::vector<int> count(m_pattern_column.size() + 1, 0);
+  std::vector<int> count(m_matrix.blocks().size() + 1, 0);
   for_each_term([&](std::size_t k, int) { ++count[k + 1]; });
   for (std::size_t k = 1; k < count.size(); ++k) count[k] += count[k - 1];
   m_block_spring_start = count;
@@ -134,37 +129,24 @@ std::vector<std::vector<int>> ReducedNewtonSolver::build_gather() {
 void ReducedNewtonSolver::form_system() {
   if (m_method == ReducedSolve::sparse_ldlt) {
     if (m_s.size() == 0) build_pattern();
+    assemble_blocks([](int) {});
     assemble_matrix();
     m_ldlt.factorize(m_s);
     return;
   }
-  if (m_matrix.rows() == 0) build_block_rows();
-  assemble_block_rows();
-  if (m_method == ReducedSolve::multigrid_cg) m_multigrid.update(m_matrix);
-}
-
-void ReducedNewtonSolver::build_block_rows() {
-  // The block rows keep the gather's order (the diagonal first, then the columns ascending):
-  // for_each_block's k indexes both.
-  m_matrix.set_pattern(build_gather());
-  for (int k = 0; k < static_cast<int>(m_pattern_column.size()); ++k)
-    if (m_matrix.column(k) != m_pattern_column[static_cast<std::size_t>(k)])
-      throw std::logic_error("ReducedNewtonSolver: the block rows and the gather differ");
-  if (m_method == ReducedSolve::multigrid_cg) {
-    const ClothParams& grid = m_system.cloth().params;
-    m_multigrid.build(m_matrix, grid.rows, grid.cols);
+  if (m_matrix.rows() == 0) {
+    build_gather();
+    if (m_method == ReducedSolve::multigrid_cg) {
+      const ClothParams& grid = m_system.cloth().params;
+      m_multigrid.build(m_matrix, grid.rows, grid.cols);
+    }
   }
-}
-
-void ReducedNewtonSolver::assemble_block_rows() {
   // Each row finished while in cache: its diagonal inverted (block Jacobi, the sweeps) and, for
   // the multigrid, its share of the sweeps' single-precision copy. Each diagonal block is
   // symmetric positive definite (a principal block of S).
-  std::vector<Mat3>& blocks = m_matrix.blocks();
   const bool sweeps = m_method == ReducedSolve::multigrid_cg;
-  for_each_block(
-      [&](int k, const Mat3& block) { blocks[static_cast<std::size_t>(k)] = block; },
-      [&](int i) { m_matrix.finish_row(i, sweeps); });
+  assemble_blocks([&](int i) { m_matrix.finish_row(i, sweeps); });
+  if (m_method == ReducedSolve::multigrid_cg) m_multigrid.update(m_matrix);
 }
 
 void ReducedNewtonSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out) {
@@ -209,11 +191,10 @@ void ReducedNewtonSolver::build_pattern() {
   }
   outer[n3] = static_cast<int>(column_start.back());
   // Block (p, q) of the row pattern: rows 3p.. of columns 3q.. (rank of p in column q's list).
-  m_block_slots.resize(m_pattern_column.size());
+  m_block_slots.resize(m_matrix.blocks().size());
   for (int p = 0; p < n; ++p)
-    for (int k = m_pattern_start[static_cast<std::size_t>(p)];
-         k < m_pattern_start[static_cast<std::size_t>(p) + 1]; ++k) {
-      const auto q = static_cast<std::size_t>(m_pattern_column[static_cast<std::size_t>(k)]);
+    for (int k = m_matrix.row_start(p); k < m_matrix.row_start(p + 1); ++k) {
+      const auto q = static_cast<std::size_t>(m_matrix.column(k));
       const auto rank = std::lower_bound(rows[q].begin(), rows[q].end(), p) - rows[q].begin();
       m_block_slots[static_cast<std::size_t>(k)] =
           BlockSlot{column_start[q] + 3 * rank, 3 * static_cast<Eigen::Index>(rows[q].size())};
@@ -225,14 +206,12 @@ void ReducedNewtonSolver::build_pattern() {
 void ReducedNewtonSolver::assemble_matrix() {
   // Every entry of the pattern is a block of the row pattern: written once, nothing zeroed.
   double* values = m_s.valuePtr();
-  for_each_block(
-      [&](int k, const Mat3& block) {
-        const BlockSlot& slot = m_block_slots[static_cast<std::size_t>(k)];
-        for (Eigen::Index b = 0; b < 3; ++b)
-          for (Eigen::Index a = 0; a < 3; ++a)
-            values[slot.base + b * slot.stride + a] = block(a, b);
-      },
-      [](int) {});
+  const std::vector<Mat3>& blocks = m_matrix.blocks();
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    const BlockSlot& slot = m_block_slots[k];
+    for (Eigen::Index b = 0; b < 3; ++b)
+      for (Eigen::Index a = 0; a < 3; ++a) values[slot.base + b * slot.stride + a] = blocks[k](a, b);
+  }
 }
 
 void ReducedNewtonSolver::jacobian_times(ConstVecRef r_x, ConstVecRef r_v,

@@ -82,22 +82,22 @@ class ReducedNewtonSolver {
     Eigen::Index base = 0, stride = 0;
   };
 
-  /// S's blocks from the last K, D and gamma, row by row: visit(k, S_ij) for each block of row
-  /// i in the pattern's order (the diagonal first, then the columns ascending; k counts the
-  /// blocks), then finish_row(i). S_ii = M - gamma D_ii - gamma^2 K_ii + sum of C_e over the
-  /// springs at i, or M on a fixed particle; S_ij = -sum of C_e over the springs on (i, j) when
-  /// both ends are free, 0 otherwise (C_e = gamma D_e + gamma^2 K_e). Each block is written
-  /// once, gathered from the spring blocks it sums, so S streams out in memory order
-  /// (docs/performance.md, "Assembling S row by row").
-  template <class Visit, class FinishRow>
-  void for_each_block(Visit visit, FinishRow finish_row) const;
-  /// Builds the row pattern and its spring lists; returns each particle's spring neighbours.
+  /// S's blocks from the last K, D and gamma into m_matrix, row by row (the diagonal first,
+  /// then the columns ascending), then finish_row(i). S_ii = M - gamma D_ii - gamma^2 K_ii + sum
+  /// of C_e over the springs at i, or M on a fixed particle; S_ij = -sum of C_e over the springs
+  /// on (i, j) when both ends are free, 0 otherwise (C_e = gamma D_e + gamma^2 K_e). Each block
+  /// is written once, gathered from the spring blocks it sums (or, left of the diagonal, copied
+  /// from its mirror), so S streams out in memory order (docs/performance.md, "Assembling S row
+  /// by row").
+  template <class FinishRow>
+  void assemble_blocks(FinishRow finish_row);
+  /// Sets m_matrix's pattern and the spring lists of its blocks; returns each particle's spring
+  /// neighbours.
   std::vector<std::vector<int>> build_gather();
   void form_system();
   void build_pattern();
+  /// Copies m_matrix's blocks into m_s.
   void assemble_matrix();
-  void build_block_rows();
-  void assemble_block_rows();
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out);
   /// out = K r_x + D r_v|fixed (r_v on the fixed particles, 0 elsewhere), with the unclamped
   /// columns of fixed particles (rows not zeroed).
@@ -118,17 +118,16 @@ class ReducedNewtonSolver {
   bool m_has_jacobian = false;
   long m_iterations = 0;
   JacobianBlocks m_jacobian;
-  // S's block pattern by rows, as for_each_block visits it: row i's blocks are k in
-  // [pattern_start[i], pattern_start[i + 1]), block k in column pattern_column[k] and the sum of
-  // the springs block_springs[block_spring_start[k]] to block_springs[block_spring_start[k+1]-1]
-  // (a diagonal block: the springs at i; an off-diagonal one: those on the pair). It depends on
-  // the springs alone, not on the fixed set.
-  std::vector<int> m_pattern_start, m_pattern_column, m_block_spring_start, m_block_springs;
-  // CG only: S by block rows (the same pattern) and the multigrid levels of pcg-multigrid.
+  // S by block rows (detail::BlockSparseMatrix; its pattern depends on the springs alone, not
+  // on the fixed set) and, for each block k on or right of the diagonal, the springs it sums:
+  // block_springs[block_spring_start[k]] to block_springs[block_spring_start[k + 1] - 1] (a
+  // diagonal block: the springs at i; an off-diagonal one: those on the pair).
   detail::BlockSparseMatrix m_matrix;
+  std::vector<int> m_block_spring_start, m_block_springs;
+  // pcg-multigrid only: the multigrid levels.
   detail::GridMultigrid m_multigrid;
-  // sparse-direct only: S in a pattern built once, where each block k of the row pattern
-  // lives, the symbolic analysis.
+  // sparse-direct only: S in a pattern built once (from m_matrix's blocks), where each block k
+  // of the row pattern lives, the symbolic analysis.
   Eigen::SparseMatrix<double> m_s;
   std::vector<BlockSlot> m_block_slots;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> m_ldlt;
