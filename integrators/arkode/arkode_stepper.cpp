@@ -239,12 +239,7 @@ void ArkodeStepper::cover_fixed(double t_end, int halvings_left) {
 // so the step is set to the interval each time: a remainder that fixed_step_end rounds up to a
 // whole step, the halves of a halved step and the return to dt after them all land exactly.
 void ArkodeStepper::evolve_fixed(double t_end) {
-  // Halved steps could otherwise take 2^max_step_halvings attempts inside one step() call, out
-  // of reach of the runner's check between calls.
-  if (m_counters.attempts >= m_options.max_steps)
-    throw IntegratorFailure("max_steps", "reached integrator.max_steps = " +
-                                             std::to_string(m_options.max_steps) +
-                                             " step attempts at t = " + std::to_string(m_t));
+  check_attempts(m_options.max_steps);
   check_sundials(ARKStepSetFixedStep(m_arkode.get(), t_end - m_t), "ARKStepSetFixedStep");
   evolve(t_end);
 }

@@ -31,6 +31,7 @@ double ImplicitEuler::step(double t_stop) {
 // (arkode_stepper.cpp, cover_fixed), so that a converged implicit-euler and a one-stage DIRK
 // table meet a hard step alike (docs/integrators.md, "Halving a failed fixed step").
 void ImplicitEuler::cover_converged(double t_start, double t_end, int halvings_left) {
+  check_attempts(m_options.max_steps);
   ++m_counters.attempts;
   try {
     converged_step(t_start, t_end);

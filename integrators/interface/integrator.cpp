@@ -34,6 +34,13 @@ double Integrator::accept_fixed_step(double t_next) {
   return m_t;
 }
 
+void Integrator::check_attempts(long max_steps) const {
+  if (m_counters.attempts >= max_steps)
+    throw IntegratorFailure("max_steps", "reached integrator.max_steps = " +
+                                             std::to_string(max_steps) +
+                                             " step attempts at t = " + std::to_string(m_t));
+}
+
 double fixed_step_end(double dt, double t, double t_stop) {
   // A remainder within round-off of dt is taken as one full step, so that dt = 1/30 over 1 s
   // takes 30 steps, not 30 plus a sliver.

@@ -61,6 +61,10 @@ class Integrator {
  protected:
   /// Books an accepted fixed step that ended at t_next (time, step size, counters); returns it.
   double accept_fixed_step(double t_next);
+  /// Throws IntegratorFailure ("max_steps") once the attempts reach `max_steps`: a fixed step
+  /// halved after failed solves could otherwise take 2^max_step_halvings attempts inside one
+  /// step() call, out of reach of the simulation's check between calls.
+  void check_attempts(long max_steps) const;
 
   /// Views of the position and velocity blocks of m_y.
   VecMap positions() { return VecMap(m_y.data(), m_y.size() / 2); }

@@ -173,5 +173,27 @@ TEST(ImplicitEuler, AFailedConvergedStepIsTakenAsTwoHalves) {
   EXPECT_TRUE(found) << "no Newton limit halved the step exactly once";
 }
 
+// A step whose solves keep failing is halved up to max_step_halvings levels, up to 2^30
+// attempts inside one step() call: integrator.max_steps bounds the attempts there too, as in
+// arkode-dirk (it ran 592875 attempts past max_steps = 1000 and still ended ok).
+TEST(ImplicitEuler, HalvedStepsStopAtMaxSteps) {
+  // One Newton iteration converges only on sub-steps thousands of times shorter than dt.
+  auto s = testing::swinging_sheet(1.0);
+  IntegratorOptions o = converged_options(false);
+  o.dt = 0.01;
+  o.max_newton_iters = 1;
+  o.max_step_halvings = 30;
+  o.max_steps = 1000;
+  ImplicitEuler method(*s, o);
+  method.reset(0.0, s->initial_state(0.0));
+  try {
+    method.step(1.0);
+    ADD_FAILURE() << "the step ended after " << method.counters().attempts << " attempts";
+  } catch (const IntegratorFailure& failure) {
+    EXPECT_EQ(failure.flag(), "max_steps");
+    EXPECT_EQ(method.counters().attempts, 1000);
+  }
+}
+
 }  // namespace
 }  // namespace drape
