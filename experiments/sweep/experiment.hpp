@@ -51,6 +51,9 @@ struct RunSpec {
   std::string id;                   ///< stable folder name: slug of the overrides and a hash
   std::string scene;                ///< as written in the experiment file
   std::filesystem::path scene_path;
+  /// FNV-1a of the scene file's bytes (hex): a run of an edited scene is another run, so that
+  /// resume and merge never take its old results (run.json and the id hold it).
+  std::string scene_digest;
   std::vector<Override> parameters;  ///< the swept and case values, in plan order
   std::vector<Override> overrides;   ///< everything applied: set, duration, parameters
   std::string reference;            ///< id of this run's reference run, "" for none

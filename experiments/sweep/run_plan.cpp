@@ -2,6 +2,8 @@
 
 #include <cctype>
 #include <cstdint>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <stdexcept>
 #include <utility>
@@ -61,6 +63,7 @@ nlohmann::json RunSpec::to_json() const {
   nlohmann::json j = {{"id", id},
                       {"index", index},
                       {"scene", scene},
+                      {"scene_digest", scene_digest},
                       {"parameters", params},
                       {"overrides", assignments()},
                       {"reference", reference},
@@ -86,7 +89,13 @@ std::string run_id(const RunSpec& run) {
   if (run.is_reference) slug += "-reference";
   if (run.bisect) slug += "-bisect";
   for (const auto& [key, value] : run.parameters) slug += "-" + slug_part(value);
-  if (slug.size() > 72) slug.resize(72);
+  // Cut at a character's start: half a UTF-8 sequence in the id would not survive a round trip
+  // through run.json (its bytes replaced), so resume and merge would never find the run again.
+  if (slug.size() > 72) {
+    std::size_t end = 72;
+    while (end > 0 && (static_cast<unsigned char>(slug[end]) & 0xC0) == 0x80) --end;
+    slug.resize(end);
+  }
   return fmt::format("{}-{:08x}", slug, fnv1a(identity.dump()) & 0xffffffffULL);
 }
 
@@ -101,6 +110,7 @@ void plan_run(const Experiment& e, RunSpec run, std::vector<RunSpec>& plan,
     RunSpec ref;
     ref.scene = run.scene;
     ref.scene_path = run.scene_path;
+    ref.scene_digest = run.scene_digest;
     ref.is_reference = true;
     for (const auto& p : run.parameters)
       if (p.first.rfind("integrator.", 0) != 0) ref.parameters.push_back(p);
@@ -142,12 +152,19 @@ std::vector<RunSpec> expand_runs(const Experiment& e) {
   std::vector<RunSpec> plan;
   std::vector<RunSpec> references;
   std::set<std::string> ids;
+  std::vector<std::string> digests;
+  for (const auto& path : e.scene_paths) {
+    std::ifstream in(path, std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    digests.push_back(fmt::format("{:016x}", fnv1a(bytes)));
+  }
   for (std::size_t s = 0; s < e.scenes.size(); ++s)
     for (const auto& one_case : cases)
       for (const auto& combo : combos) {
         RunSpec run;
         run.scene = e.scenes[s];
         run.scene_path = e.scene_paths[s];
+        run.scene_digest = digests[s];
         run.parameters = one_case;
         run.parameters.insert(run.parameters.end(), combo.begin(), combo.end());
         run.overrides = e.set;

@@ -56,6 +56,40 @@ TEST(ExperimentPlan, RunIdsAreStableUniqueAndIndependentOfPlanPosition) {
   for (const auto& id : ids) EXPECT_TRUE(bigger_ids.count(id)) << id;
 }
 
+// An edited scene is another run: the id and run.json carry the file's digest, so resume and
+// merge never take the results of the scene as it was (they did: the id held only its name).
+TEST(ExperimentPlan, EditingTheSceneFileChangesTheRunIds) {
+  const fs::path dir = temp_dir("edited");
+  const fs::path scene = write_scene(dir);
+  const auto before = drape::expand_runs(parse(two_by_three(), dir));
+  std::ofstream(scene, std::ios::app) << "\n";  // the same scene, other bytes: a new digest
+  const auto after = drape::expand_runs(parse(two_by_three(), dir));
+  ASSERT_EQ(before.size(), after.size());
+  for (std::size_t k = 0; k < before.size(); ++k) {
+    EXPECT_NE(before[k].id, after[k].id);
+    EXPECT_NE(before[k].to_json()["scene_digest"], after[k].to_json()["scene_digest"]);
+  }
+}
+
+// A long scene name is cut to 72 bytes at a character's start, so the id stays valid UTF-8 and
+// survives run.json (cut inside a character, resume and merge never found the run again).
+TEST(ExperimentPlan, ALongNonAsciiSceneNameIsCutAtACharacter) {
+  const fs::path dir = temp_dir("utf8");
+  std::string name;
+  for (int k = 0; k < 30; ++k) name += "\xc3\xa9";  // e-acute, two bytes each: 60 bytes
+  name += "abc";                                    // 63 bytes, then more e-acutes past 72
+  for (int k = 0; k < 10; ++k) name += "\xc3\xa9";
+  fs::copy_file(write_scene(dir), dir / (name + ".json"));
+  json source = two_by_three();
+  source["scenes"] = json::array({name + ".json"});
+  for (const auto& run : drape::expand_runs(parse(source, dir))) {
+    const std::string slug = run.id.substr(0, run.id.rfind('-'));
+    EXPECT_EQ(slug.substr(0, 63), name.substr(0, 63));
+    EXPECT_LE(slug.size(), 72u);
+    EXPECT_EQ(json(run.id).dump(), "\"" + run.id + "\"") << "valid UTF-8";
+  }
+}
+
 TEST(ExperimentPlan, ReferenceRunsShareNonIntegratorValuesAndAreAppendedOnce) {
   const fs::path dir = temp_dir("reference");
   write_scene(dir);
