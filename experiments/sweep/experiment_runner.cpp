@@ -228,11 +228,43 @@ void write_table(const fs::path& stem, const nlohmann::json& header,
     write_ensemble_summary(stem.parent_path() / "summary.csv", parameters, rows);
 }
 
+// The fields merge and resume read from a folder's experiment.json, each of its type: a
+// folder written by drapelab has them; a damaged or crafted one is named, field by field,
+// instead of failing in the middle of the merge. A plan id names a folder under runs/, so it
+// must be one plain name (a "../x" id made merge remove a folder outside DIR).
+void check_header(const nlohmann::json& header, const std::string& file) {
+  const auto require = [&](const char* key, bool ok, const char* expected) {
+    if (!ok) throw InputError(file, key, std::string("expected ") + expected);
+  };
+  const auto strings = [](const nlohmann::json& j) {
+    return j.is_array() && std::all_of(j.begin(), j.end(), [](const auto& e) { return e.is_string(); });
+  };
+  require("name", header.contains("name") && header["name"].is_string(), "a string");
+  require("question", header.contains("question") && header["question"].is_string(), "a string");
+  require("metrics", header.contains("metrics") && strings(header["metrics"]), "a list of strings");
+  require("parameters", header.contains("parameters") && strings(header["parameters"]),
+          "a list of strings");
+  require("plan_size", header.contains("plan_size") && header["plan_size"].is_number_unsigned(),
+          "a count");
+  const nlohmann::json& plan = header["plan"];
+  require("plan", plan.is_array(), "a list of runs");
+  for (std::size_t k = 0; k < plan.size(); ++k) {
+    const std::string field = fmt::format("plan[{}]", k);
+    if (!plan[k].is_object() || !plan[k].contains("reference"))
+      throw InputError(file, field, "expected a run of the plan (an object with id and reference)");
+    const nlohmann::json& id = plan[k].value("id", nlohmann::json());
+    if (!id.is_string() || id.get<std::string>().empty() || id == "." || id == ".." ||
+        id.get<std::string>().find_first_of(std::string("/\\\0", 3)) != std::string::npos)
+      throw InputError(file, field + ".id", "expected a run folder's name (no path): " + id.dump());
+  }
+}
+
 nlohmann::json read_header(const fs::path& dir) {
   const fs::path file = dir / "experiment.json";
   auto header = read_json_if_present(file);
   if (!header || !header->contains("plan"))
     throw InputError(file.string(), "", "not an experiment output folder (no plan)");
+  check_header(*header, file.string());
   return *header;
 }
 

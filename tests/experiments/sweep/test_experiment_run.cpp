@@ -241,6 +241,43 @@ TEST(ExperimentRun, MergeTakesRunsOnlyOfThisExperimentAndItsPlannedRuns) {
                                       ": is not this run of the plan"}));
 }
 
+// A damaged or crafted experiment.json is named field by field (exit 2), and a plan id that
+// is a path is refused before anything is removed (a "../victim" id removed a folder outside).
+TEST(ExperimentRun, MergeChecksTheHeaderItReads) {
+  const SmallExperiment small("merge_header");
+  drape::run_experiment(small.experiment, small.options);
+  const fs::path header_file = small.options.out_dir / "experiment.json";
+  const json header = read_json(header_file);
+  const fs::path victim = small.dir / "victim";
+  fs::create_directories(victim);
+  const auto field_of = [&](const json& damaged) {
+    std::ofstream(header_file) << damaged;
+    try {
+      drape::merge_results(small.options.out_dir, {});
+    } catch (const drape::InputError& e) {
+      EXPECT_EQ(e.file(), header_file.string());
+      return e.field();
+    }
+    return std::string("<no error>");
+  };
+  json crafted = header;
+  crafted["plan"][0]["id"] = "../../victim";
+  EXPECT_EQ(field_of(crafted), "plan[0].id");
+  crafted["plan"][0]["id"] = victim.string();
+  EXPECT_EQ(field_of(crafted), "plan[0].id");
+  EXPECT_TRUE(fs::exists(victim));
+  json damaged = header;
+  damaged.erase("question");
+  EXPECT_EQ(field_of(damaged), "question");
+  damaged = header;
+  damaged["metrics"] = json::array({1});
+  EXPECT_EQ(field_of(damaged), "metrics");
+  damaged = header;
+  damaged["plan"][1] = 7;
+  EXPECT_EQ(field_of(damaged), "plan[1]");
+  EXPECT_EQ(field_of(header), "<no error>");
+}
+
 // A run that segfaults or aborts ends its own child process only (docs/experiments.md,
 // "Isolation"): the table has a row for every run, and resume retries the crashed one.
 TEST(ExperimentRun, CrashedRunsAreRecordedAndRetriedOnResume) {
