@@ -24,17 +24,19 @@ void check_advances(const Scene& scene, const std::string& field, double step) {
 void check_run_limits(const Scene& scene, const IntegratorOptions& options,
                       const std::string& integrator_field) {
   check_advances(scene, integrator_field + ".dt", options.dt);
-  if (options.adaptive) {
-    check_advances(scene, integrator_field + ".max_dt", options.max_dt);
-    return;
-  }
-  // Counted in double: duration / dt can be far beyond any integer type.
-  const double steps = std::ceil(scene.duration / options.dt);
+  if (options.adaptive) check_advances(scene, integrator_field + ".max_dt", options.max_dt);
+  // A fixed run takes duration / dt steps, an adaptive one at least duration / max_dt: more
+  // than max_steps allows is refused now, not after hours of steps (counted in double:
+  // duration / dt can be far beyond any integer type).
+  const std::string step_field = integrator_field + (options.adaptive ? ".max_dt" : ".dt");
+  const double step = options.adaptive ? options.max_dt : options.dt;
+  if (step <= 0.0) return;  // an adaptive run without a bound on its step
+  const double steps = std::ceil(scene.duration / step);
   if (steps > static_cast<double>(options.max_steps))
-    throw InputError(scene.file, integrator_field + ".dt",
-                     "duration / dt = " + nlohmann::json(steps).dump() +
-                         " steps, more than " + integrator_field + ".max_steps = " +
-                         std::to_string(options.max_steps));
+    throw InputError(scene.file, step_field,
+                     "duration / " + std::string(options.adaptive ? "max_dt" : "dt") + " = " +
+                         nlohmann::json(steps).dump() + " steps, more than " + integrator_field +
+                         ".max_steps = " + std::to_string(options.max_steps));
 }
 
 // A key changes the state at most once when pressed (release, attach, map) and once more when

@@ -43,6 +43,13 @@ TEST(RunLimits, StepsImpliedByDurationAreCheckedAgainstMaxSteps) {
             "integrator.max_steps = 999");
   EXPECT_EQ(error_for(R"({"name": "leapfrog", "dt": 1e-3, "max_steps": 1000})", 1.0), "no error");
   EXPECT_EQ(error_for(R"({"name": "leapfrog", "dt": 1e-3})", 0.0), "no error");
+  // An adaptive run takes at least duration / max_dt steps.
+  EXPECT_EQ(error_for(R"({"name": "arkode-erk", "adaptive": true, "max_dt": 1e-9})", 1.0),
+            "scene.json: integrator.max_dt: duration / max_dt = 1000000000.0 steps, more than "
+            "integrator.max_steps = 100000000");
+  EXPECT_EQ(error_for(R"({"name": "arkode-erk", "adaptive": true, "max_dt": 1e-8})", 1.0),
+            "no error");
+  EXPECT_EQ(error_for(R"({"name": "arkode-erk", "adaptive": true})", 1e6), "no error");
 }
 
 TEST(RunLimits, SceneSimulationChecksBeforeBuilding) {
