@@ -1,5 +1,6 @@
 #include "core/scene/json_text.hpp"
 
+#include <iterator>
 #include <set>
 #include <stdexcept>
 #include <vector>
@@ -111,15 +112,25 @@ void append_brief(const nlohmann::json& value, int levels, std::string& out) {
   out += object ? "}" : "]";
 }
 
+// nlohmann's lexer takes a NUL byte for the end of the input (for C strings), so whatever
+// follows one would be dropped without a word: JSON text has no NUL, so it is refused.
+void check_no_nul(const std::string& text, const std::string& file, const std::string& field) {
+  const auto at = text.find('\0');
+  if (at != std::string::npos)
+    throw InputError(file, field, "not valid JSON: a NUL byte at offset " + std::to_string(at));
+}
+
 }  // namespace
 
 nlohmann::json parse_json_text(const std::string& text, const std::string& file,
                                const std::string& field) {
+  check_no_nul(text, file, field);
   return parse_bounded(text, file, field);
 }
 
 std::optional<nlohmann::json> try_parse_json_text(const std::string& text, const std::string& file,
                                                   const std::string& field) {
+  if (text.find('\0') != std::string::npos) return std::nullopt;  // not valid JSON
   try {
     return nlohmann::json::parse(text, ParseGuard());
   } catch (const nlohmann::json::exception&) {
@@ -130,7 +141,8 @@ std::optional<nlohmann::json> try_parse_json_text(const std::string& text, const
 }
 
 nlohmann::json parse_json_stream(std::istream& in, const std::string& file) {
-  return parse_bounded(in, file, "");
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return parse_json_text(text, file);
 }
 
 std::string quote_json(const nlohmann::json& value) {

@@ -36,6 +36,19 @@ TEST(JsonText, TryParseFallsBackOnSyntaxButNotOnDepth) {
             "--set: x: not accepted JSON: nested deeper than 64 levels");
 }
 
+// nlohmann's lexer ends the input at a NUL byte, so text after one was dropped silently (a
+// recording line's frame, a scene's later keys): JSON text has none, so it is refused.
+TEST(JsonText, ANulByteIsRefusedNotTheEndOfTheInput) {
+  const std::string text = std::string("{\"t\": 0}") + '\0' + "{\"t\": -5}";
+  EXPECT_EQ(input_error_message([&] { parse_json_text(text, "r.jsonl", "line 2"); }),
+            "r.jsonl: line 2: not valid JSON: a NUL byte at offset 8");
+  EXPECT_FALSE(try_parse_json_text(text, "--set", "x").has_value());
+  const std::string file = ::testing::TempDir() + "nul_scene.json";
+  std::ofstream(file, std::ios::binary) << text;
+  EXPECT_EQ(input_error_message([&] { read_json_file(file); }),
+            file + ": not valid JSON: a NUL byte at offset 8");
+}
+
 TEST(JsonText, ARepeatedKeyIsAnInputErrorNamingItsPath) {
   const std::string repeated =
       ": not accepted JSON: the key is repeated in its object (only one value can be kept)";
