@@ -229,10 +229,19 @@ void add_ensemble_defaults(const JsonReader& in, Experiment& e) {
     if (key == whole) throw in.error("sweep.perturbation", why);
   for (std::size_t c = 0; c < e.cases.size(); ++c)
     if (names(e.cases[c], whole)) throw in.error(fmt::format("cases[{}].perturbation", c), why);
-  bool position = names(e.set, "perturbation.position");
-  for (const auto& [key, values] : e.sweep) position = position || key == "perturbation.position";
-  for (const auto& c : e.cases) position = position || names(c, "perturbation.position");
-  if (!position) e.set.emplace_back("perturbation.position", 1e-3);
+  // When some cases give their own position, the others get the default as a case value (a key
+  // is in `set` or in the cases, not both); they got none, and their repeats were identical.
+  const std::string key = "perturbation.position";
+  bool position = names(e.set, key);
+  for (const auto& [swept, values] : e.sweep) position = position || swept == key;
+  const bool in_cases =
+      std::any_of(e.cases.begin(), e.cases.end(), [&](const auto& c) { return names(c, key); });
+  if (!position && in_cases) {
+    for (auto& c : e.cases)
+      if (!names(c, key)) c.emplace_back(key, 1e-3);
+  } else if (!position) {
+    e.set.emplace_back(key, 1e-3);
+  }
   bool seeded = names(e.set, repeat_parameter);
   for (const auto& [key, values] : e.sweep) seeded = seeded || key == repeat_parameter;
   for (const auto& c : e.cases) seeded = seeded || names(c, repeat_parameter);

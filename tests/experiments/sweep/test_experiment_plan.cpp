@@ -90,6 +90,23 @@ TEST(ExperimentPlan, ALongNonAsciiSceneNameIsCutAtACharacter) {
   }
 }
 
+// An ensemble perturbs every repeat: when one case gives its own position, the other cases
+// still get the default (they got none, and their repeats were identical).
+TEST(ExperimentPlan, EveryCaseOfAnEnsembleIsPerturbed) {
+  const fs::path dir = temp_dir("ensemble_cases");
+  write_scene(dir);
+  const json source = json::parse(R"({"name": "e", "scenes": ["cloth.json"], "repeats": 2,
+    "cases": [{"integrator.name": "leapfrog", "perturbation.position": 0.01},
+              {"integrator.name": "symplectic-euler"}]})");
+  const auto plan = drape::expand_runs(parse(source, dir));
+  ASSERT_EQ(plan.size(), 4u);
+  for (const auto& run : plan) {
+    const json parameters = run.to_json()["parameters"];
+    const double expected = parameters["integrator.name"] == "leapfrog" ? 0.01 : 1e-3;
+    EXPECT_EQ(parameters.value("perturbation.position", 0.0), expected) << run.id;
+  }
+}
+
 TEST(ExperimentPlan, ReferenceRunsShareNonIntegratorValuesAndAreAppendedOnce) {
   const fs::path dir = temp_dir("reference");
   write_scene(dir);
