@@ -114,6 +114,11 @@ class HandTrack {
   void add_keys(const std::vector<HandFrame>& frames, const TimeMap& time);
   /// Scene times of the first and last usable sample of a hand; nullopt if it has none.
   std::optional<std::pair<double, double>> span(Hand hand) const;
+  /// Throws InputError(file, field) unless every point of both curves, between the samples too,
+  /// has every coordinate within +-max_hand_coordinate: two samples very close in time with
+  /// some distance between them give a tangent that throws the curve far away between its
+  /// neighbours (1 us apart: 250 m; 2.8e-17 s apart: 3.6e13 m; 5e-324 s apart: NaN).
+  void check_curve_bound(const std::string& file, const std::string& field) const;
   /// Stretches of a hand's bridged samples, interpolated separately (0 without samples).
   std::size_t runs(Hand hand) const { return curve(hand).run_end.size(); }
 

@@ -186,7 +186,11 @@ HandInput load_hand_input(const InputConfig& config) {
 
 HandInput load_hand_input(const nlohmann::json& input, const std::string& scene_file,
                           const std::string& field_path, const std::filesystem::path& base_dir) {
-  return load_hand_input(parse_input_config(input, scene_file, field_path, base_dir));
+  HandInput loaded = load_hand_input(parse_input_config(input, scene_file, field_path, base_dir));
+  const bool recorded = !loaded.config.recording.empty();
+  loaded.track.check_curve_bound(recorded ? loaded.config.recording : scene_file,
+                                 field_path + (recorded ? ".recording" : ".events"));
+  return loaded;
 }
 
 }  // namespace drape

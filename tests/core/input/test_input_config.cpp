@@ -103,6 +103,29 @@ TEST(InputConfig, EventsAloneGiveHandsAndKeys) {
   EXPECT_EQ(input.track.keys(), (std::vector<KeyEvent>{{0.1, "a"}}));
 }
 
+// Every point of the hand's curve, not only its samples, lies within the scene bound: samples
+// 1 us apart and 1 cm apart give a tangent of 1e4 m/s, which throws the cubic 250 m out over
+// the next 0.1 s; samples a denormal apart give a tangent that is not finite.
+TEST(InputConfig, TheCurveBetweenSamplesMustStayWithinTheSceneBound) {
+  const auto load = [](const std::string& events) {
+    return load_hand_input(json::parse(R"({"events": )" + events + "}"), "s.json", "input", ".");
+  };
+  expect_input_error(
+      [&] {
+        load(R"([{"t": 0, "right": [0, 1, 0]}, {"t": 1e-6, "right": [0.01, 1, 0]},
+                 {"t": 0.1, "right": [0.02, 1, 0]}])");
+      },
+      {"s.json: input.events: the right hand's curve between t = 1e-06 s and t = 0.1 s",
+       "reaches 250.0", "m in x", "+-10 m"});
+  expect_input_error(
+      [&] { load(R"([{"t": 0, "right": [0, 1, 0]}, {"t": 5e-324, "right": [0.02, 1, 0]}])"); },
+      {"is not finite in x"});
+  // Kinect frames 33 ms apart with a 1 m jump (a tracking glitch) stay within the bound.
+  const HandInput glitch = load(R"([{"t": 0, "left": [0, 1, 0]}, {"t": 0.033, "left": [1, 1, 0]},
+                                    {"t": 0.067, "left": [0, 1, 0]}])");
+  EXPECT_TRUE(glitch.track.motion(Hand::Left, 0.05).has_value());
+}
+
 TEST(InputConfig, WrittenJsonReadsBackTheSame) {
   const InputConfig c = parse(R"({
     "recording": "recordings/kinect-v2/Ges04_comehere.csv",
