@@ -256,6 +256,11 @@ def load_complete_experiment(directory):
     if not results.get("runs"):
         raise ValueError(f"{directory / 'results.json'}: no runs (an experiment with an empty plan, or a "
                          "merge before any shard finished)")
+    if len(results["runs"]) < results["plan_size"]:
+        raise ValueError(f"{directory / 'results.json'}: {len(results['runs'])} of {results['plan_size']} "
+                         "planned runs have a result (a merge that named missing runs, or an experiment "
+                         "that was stopped): run the rest (`drapelab experiment` resumes, shards run "
+                         "again) and `drapelab merge`, then report")
     missing = [str(path) for row in results["runs"] for path in missing_run_files(directory, row)]
     if missing:
         listed = ", ".join(missing[:5]) + (f" and {len(missing) - 5} more" if len(missing) > 5 else "")

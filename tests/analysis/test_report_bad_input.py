@@ -239,6 +239,16 @@ class MalformedDocumentTest(ReportTestCase):
         self.report(status=2, message=f"{self.directory / 'results.json'}: parameters: missing")
         self.assertNothingWritten()
 
+    def test_results_json_with_fewer_runs_than_the_plan(self):
+        # what `drapelab merge` leaves when runs are missing (it exits 1 and names them): a
+        # report of the runs that are there looked like the experiment's whole
+        results = json.loads((self.directory / "results.json").read_text())
+        results["plan_size"] = len(results["runs"]) + 2
+        (self.directory / "results.json").write_text(json.dumps(results))
+        self.report(status=2, message=f"{self.directory / 'results.json'}: {len(results['runs'])} of "
+                                      f"{len(results['runs']) + 2} planned runs have a result")
+        self.assertNothingWritten()
+
     def test_summary_json_with_a_bad_event_time(self):
         summary = json.loads((self.run / "summary.json").read_text())
         summary["events"][1]["t"] = None
