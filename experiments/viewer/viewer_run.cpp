@@ -1,5 +1,7 @@
 #include "experiments/viewer/viewer_run.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -117,6 +119,47 @@ void read_energy(const fs::path& file, ViewerRun& run) {
   }
 }
 
+// The summary.json fields the page shows, each of its type (drapelab run writes them so): a
+// damaged one is named here, where the page would throw at load and stay blank (an event
+// without a numeric t) or view would stop on nlohmann's message naming no file.
+void check_page_fields(const nlohmann::json& summary, const std::string& file) {
+  const auto expect = [&](const nlohmann::json& object, const std::string& key,
+                          const std::string& field, bool ok, const char* expected) {
+    if (object.contains(key) && !ok) throw InputError(file, field, std::string("expected ") + expected);
+  };
+  const auto number = [](const nlohmann::json& j) {
+    return j.is_number() && std::isfinite(j.get<double>());
+  };
+  for (const char* key : {"status", "integrator"})
+    expect(summary, key, key, summary.contains(key) && summary[key].is_string(), "a string");
+  expect(summary, "table", "table",
+         summary.contains("table") && (summary["table"].is_string() || summary["table"].is_null()),
+         "a string or null");
+  for (const char* key : {"duration", "sim_time"})
+    expect(summary, key, key, summary.contains(key) && number(summary[key]), "a finite number");
+  expect(summary, "dt", "dt", summary.contains("dt") && (summary["dt"].is_null() || number(summary["dt"])),
+         "a finite number or null");
+  expect(summary, "adaptive", "adaptive", summary.contains("adaptive") && summary["adaptive"].is_boolean(),
+         "true or false");
+  const nlohmann::json& scene = summary["scene"];
+  expect(scene, "description", "scene.description",
+         scene.contains("description") && scene["description"].is_string(), "a string");
+  const nlohmann::json& events = summary["events"];
+  if (!events.is_array()) throw InputError(file, "events", "expected an array");
+  for (std::size_t k = 0; k < events.size(); ++k) {
+    const std::string field = "events[" + std::to_string(k) + "]";
+    const nlohmann::json& e = events[k];
+    if (!e.is_object()) throw InputError(file, field, "expected an event (an object)");
+    if (!e.contains("t") || !number(e["t"])) throw InputError(file, field + ".t", "expected a finite number");
+    if (!e.contains("type") || !e["type"].is_string())
+      throw InputError(file, field + ".type", "expected a string");
+    for (const char* key : {"key", "hand"})
+      expect(e, key, field + "." + key, e.contains(key) && e[key].is_string(), "a string");
+    for (const char* key : {"particle", "object_particle"})
+      expect(e, key, field + "." + key, e.contains(key) && e[key].is_number_integer(), "an integer");
+  }
+}
+
 // The status of `path`, an InputError naming it when it cannot be known (a symbolic link
 // loop, no permission) rather than the filesystem's raw exception; a missing path is not_found.
 fs::file_status readable_status(const fs::path& path) {
@@ -200,7 +243,7 @@ ViewerRun read_viewer_run(const fs::path& dir) {
     }
   }
   if (!run.summary.contains("events")) run.summary["events"] = nlohmann::json::array();
-  if (!run.summary["events"].is_array()) throw InputError(sfile, "events", "expected an array");
+  check_page_fields(run.summary, sfile);
 
   if (has_run_file(dir, "trace.csv")) {
     run.source = "trace.csv";
@@ -212,10 +255,19 @@ ViewerRun read_viewer_run(const fs::path& dir) {
         read_state(dir / "state.csv", particles, run.summary.value("sim_time", 0.0)));
   }
   // A diverged run's last frames may hold non-finite values: the page shows the finite ones.
-  while (!run.frames.empty() &&
-         !std::all_of(run.frames.back().positions.begin(), run.frames.back().positions.end(),
-                      [](float x) { return std::isfinite(x); }))
-    run.frames.pop_back();
+  // Before them every frame must be finite (as float: 1e300 is not), or the page's quantisation
+  // of all frames would draw nothing.
+  const auto finite = [](const auto& frame) {
+    return std::all_of(frame.positions.begin(), frame.positions.end(),
+                       [](float x) { return std::isfinite(x); });
+  };
+  while (!run.frames.empty() && !finite(run.frames.back())) run.frames.pop_back();
+  for (const auto& frame : run.frames)
+    if (!finite(frame))
+      throw InputError((dir / run.source).string(), "",
+                       fmt::format("the frame at t = {} s has a position that is not finite in "
+                                   "single precision (only a diverged run's last frames may)",
+                                   frame.t));
   if (run.frames.empty())
     throw InputError(dir.string(), "",
                      "no cloth to show: neither trace.csv nor state.csv with finite positions "

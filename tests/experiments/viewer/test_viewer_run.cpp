@@ -60,6 +60,39 @@ TEST(ViewerRun, NotARunOrMalformedNamesFolderAndFile) {
             (bad_hands / "hands.csv").string() + ": line 2: particle index out of range: 7");
 }
 
+// The summary fields the page shows are checked, as are the frames before a diverged run's
+// last ones: an event without a numeric t, or one inf, gave a page that threw at load or drew
+// no frame, with view's exit 0.
+TEST(ViewerRun, FieldsAndFramesThePageCannotShowAreNamed) {
+  const auto dir = testing::tiny_run("page_fields");
+  const auto summary = (dir / "summary.json").string();
+  const auto with_events = [&](const std::string& events) {
+    testing::write_text(dir / "summary.json",
+                        R"({"status": "ok", "sim_time": 0.1, "events": )" + events +
+                            R"(, "scene": {"cloth": {"rows": 1, "cols": 2}}})");
+    return input_error_message([&] { read_viewer_run(dir); });
+  };
+  EXPECT_EQ(with_events("[5]"), summary + ": events[0]: expected an event (an object)");
+  EXPECT_EQ(with_events(R"([{"t": "0.05", "type": "hold"}])"),
+            summary + ": events[0].t: expected a finite number");
+  EXPECT_EQ(with_events(R"([{"t": 0.05}])"), summary + ": events[0].type: expected a string");
+  EXPECT_EQ(with_events(R"([{"t": 0.05, "type": "hold", "particle": "1"}])"),
+            summary + ": events[0].particle: expected an integer");
+  EXPECT_EQ(with_events(R"([{"t": 0.05, "type": "hold", "particle": 1}])"), "no error");
+  testing::write_text(dir / "summary.json",
+                      R"({"status": 3, "scene": {"cloth": {"rows": 1, "cols": 2}}})");
+  EXPECT_EQ(input_error_message([&] { read_viewer_run(dir); }), summary + ": status: expected a string");
+  const auto inf = testing::tiny_run("page_inf");
+  testing::write_text(inf / "trace.csv",
+                      "t,index,x,y,z,vx,vy,vz,fixed,contact,event\n"
+                      "0,0,0,1e300,0,0,0,0,1,-1,0\n0,1,0.02,1,0,0,0,0,0,-1,0\n"
+                      "0.05,0,0,1,0,0,0,0,1,-1,1\n0.05,1,0.02,0.99,0.01,0,0,0,1,-1,1\n");
+  EXPECT_EQ(input_error_message([&] { read_viewer_run(inf); }),
+            (inf / "trace.csv").string() +
+                ": the frame at t = 0 s has a position that is not finite in single precision "
+                "(only a diverged run's last frames may)");
+}
+
 // The tiny run's summary with output.trace_interval and sim_time set (its frames: 0 and 0.05 s).
 void write_traced_summary(const std::filesystem::path& dir, double sim_time,
                           const std::string& status) {
