@@ -124,9 +124,14 @@ std::vector<GridPoint> read_pins(JsonReader& in, const ClothParams& cloth) {
   if (!in.has("pins")) return pins;
   const auto& list = in.raw("pins");
   if (!list.is_array()) throw in.error("pins", "expected a list of [row, col]");
-  for (std::size_t k = 0; k < list.size(); ++k)
-    pins.push_back(read_grid_point(list[k], cloth, in.file(), in.field("pins") + "[" +
-                                                                 std::to_string(k) + "]"));
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string field = in.field("pins") + "[" + std::to_string(k) + "]";
+    pins.push_back(read_grid_point(list[k], cloth, in.file(), field));
+    // A pin given twice is one pin: the list would say more than the scene does.
+    for (std::size_t j = 0; j < k; ++j)
+      if (pins[j].row == pins[k].row && pins[j].col == pins[k].col)
+        throw InputError(in.file(), field, "repeats pins[" + std::to_string(j) + "]");
+  }
   return pins;
 }
 

@@ -117,9 +117,11 @@ ExperimentCommands::ExperimentCommands(CLI::App& app) {
       "experiment", "run an experiment's plan in parallel, resumably, into --out DIR");
   m_experiment->add_option("file", m_file, "experiment JSON file")->required();
   m_experiment->add_option("--out", m_out, "output folder")->required();
-  m_experiment->add_option("--jobs,-j", m_jobs, "parallel runs (default: all cores)")
+  // Each job is a child process: beyond 1024 at once a large plan would exhaust the machine's
+  // processes and memory, not run faster.
+  m_experiment->add_option("--jobs,-j", m_jobs, "parallel runs, at most 1024 (default: all cores)")
       ->transform(decimal_integer())
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1024));
   m_experiment
       ->add_option("--shard", m_shard,
                    "run only the K-th of N slices (1-based K/N), then `drapelab merge`")

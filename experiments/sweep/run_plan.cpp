@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <fstream>
@@ -189,6 +190,13 @@ Shard parse_shard(const std::string& text) {
   try {
     std::size_t used_k = 0, used_n = 0;
     if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    // Digits only, without a leading zero: stoi would also take "+1", " 1" and "01".
+    const auto plain = [](const std::string& part) {
+      return !part.empty() && part[0] != '0' &&
+             std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    if (!plain(text.substr(0, slash)) || !plain(text.substr(slash + 1)))
+      throw std::invalid_argument("not K/N");
     k = std::stoi(text.substr(0, slash), &used_k);
     n = std::stoi(text.substr(slash + 1), &used_n);
     if (used_k != slash || used_n != text.size() - slash - 1) throw std::invalid_argument("junk");

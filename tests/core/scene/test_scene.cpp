@@ -91,6 +91,7 @@ TEST(Scene, PinsOffTheGrid) {
   EXPECT_EQ(error_for(with("pins=[[0, 0], [4, 0]]")),
             "scene.json: pins[1]: [4, 0] is off the 4 x 5 grid");
   EXPECT_EQ(error_for(with("pins=[[0]]")), "scene.json: pins[0]: expected [row, col] integers, got [0]");
+  EXPECT_EQ(error_for(with("pins=[[0, 0], [1, 2], [0, 0]]")), "scene.json: pins[2]: repeats pins[0]");
 }
 
 TEST(SceneLimits, ClothSizeIsCountedIn64BitsAndBounded) {

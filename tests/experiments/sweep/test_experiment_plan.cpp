@@ -163,7 +163,7 @@ TEST(ExperimentPlan, ShardsPartitionThePlanExactlyOnce) {
   }
   EXPECT_EQ(drape::parse_shard("3/8").index, 3);
   EXPECT_EQ(drape::parse_shard("3/8").count, 8);
-  for (const char* bad : {"0/3", "4/3", "3", "a/b", "1/0", "1/2x"})
+  for (const char* bad : {"0/3", "4/3", "3", "a/b", "1/0", "1/2x", "+1/2", "01/2", " 1/2", "1/ 2"})
     EXPECT_THROW(drape::parse_shard(bad), InputError) << bad;
 }
 
