@@ -88,6 +88,7 @@ std::pair<std::vector<std::vector<Override>>, std::string> read_cases(
 BisectSpec read_bisect(JsonReader in) {
   BisectSpec b;
   b.parameter = in.string("parameter", b.parameter);
+  check_key(in, "parameter", b.parameter);  // here, not as a --set the user never gave
   b.low = in.positive("low", in.number("low"));
   b.high = in.positive("high", in.number("high"));
   if (b.high <= b.low) throw in.error("high", "must be above bisect.low");

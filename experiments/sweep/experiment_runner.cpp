@@ -370,8 +370,9 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
 
 std::vector<std::string> merge_results(const fs::path& out_dir, const std::vector<fs::path>& sources) {
   if (!fs::exists(out_dir / "experiment.json") && !sources.empty()) {
+    const nlohmann::json first = read_header(sources.front());  // before DIR exists: no empty folder
     fs::create_directories(out_dir);
-    write_json(out_dir / "experiment.json", read_header(sources.front()), process_tmp_suffix());
+    write_json(out_dir / "experiment.json", first, process_tmp_suffix());
   }
   const nlohmann::json header = read_header(out_dir);
   const std::vector<std::string> ids = plan_ids(header);

@@ -250,6 +250,11 @@ TEST(ExperimentFile, ErrorsNameTheField) {
     bad_bisect["bisect"][bound] = "x";
     EXPECT_EQ(error_field(bad_bisect, dir), std::string("bisect.") + bound);
   }
+  for (const char* parameter : {"", "integrator..dt", ".dt"}) {
+    bad_bisect["bisect"] = json::parse(R"({"low": 0.001, "high": 0.01})");
+    bad_bisect["bisect"]["parameter"] = parameter;
+    EXPECT_EQ(error_field(bad_bisect, dir), "bisect.parameter") << parameter;
+  }
   json other_grid = two_by_three();
   other_grid["reference"] = json::parse(R"({"integrator.dt": 0.0001, "cloth.rows": 5})");
   EXPECT_EQ(error_field(other_grid, dir), "reference.cloth.rows");

@@ -276,6 +276,10 @@ TEST(ExperimentRun, MergeChecksTheHeaderItReads) {
   damaged["plan"][1] = 7;
   EXPECT_EQ(field_of(damaged), "plan[1]");
   EXPECT_EQ(field_of(header), "<no error>");
+  // A new DIR is made only once the first source's header is read.
+  const fs::path fresh = small.dir / "fresh";
+  EXPECT_THROW(drape::merge_results(fresh, {victim}), drape::InputError);
+  EXPECT_FALSE(fs::exists(fresh));
 }
 
 // A run that segfaults or aborts ends its own child process only (docs/experiments.md,
