@@ -45,7 +45,9 @@ void run_tangents(const std::vector<double>& t, const std::vector<Vec3>& p, std:
   m[z] = d(z - 1) + h(z - 1) * (d(z - 1) - d(z - 2)) / (h(z - 2) + h(z - 1));
 }
 
-// Cubic Hermite segment from (t0, p0, m0) to (t1, p1, m1) and its first two derivatives.
+// Cubic Hermite segment from (t0, p0, m0) to (t1, p1, m1) and its first two derivatives. The
+// Hermite basis gives p0 and p1 exactly at s = 0 and 1 (its weights are exactly 0 and 1 there),
+// so the curve passes through the samples to the bit; a power basis would not.
 HandMotion hermite(double t0, double t1, const Vec3& p0, const Vec3& p1, const Vec3& m0,
                    const Vec3& m1, double t) {
   const double h = t1 - t0;
@@ -193,43 +195,49 @@ std::optional<std::pair<double, double>> HandTrack::span(Hand hand) const {
 }
 
 void HandTrack::check_curve_bound(const std::string& file, const std::string& field) const {
+  if (const auto violation = curve_bound_violation()) throw InputError(file, field, *violation);
+}
+
+std::optional<std::string> HandTrack::curve_bound_violation() const {
   for (const Hand hand : {Hand::Left, Hand::Right}) {
     const Curve& c = curve(hand);
     std::size_t begin = 0;
     for (const std::size_t end : c.run_end) {
       for (std::size_t k = begin; k + 1 < end; ++k) {
         const double h = c.t[k + 1] - c.t[k];
+        const auto at = [&](double s) {
+          return hermite(c.t[k], c.t[k + 1], c.p[k], c.p[k + 1], c.m[k], c.m[k + 1],
+                         c.t[k] + s * h).position;
+        };
         for (int d = 0; d < 3; ++d) {
-          // p(s) = a s^3 + b s^2 + c s + p0 on s in [0, 1] (the Hermite form, h m for the
-          // tangents): the largest |p| is at an end or where p'(s) = 3 a s^2 + 2 b s + c = 0.
+          // The largest |p| is at an end or where p'(s) = 3 a s^2 + 2 b s + m0 = 0 in (0, 1),
+          // with a and b p's coefficients of s^3 and s^2 (the tangents scaled by h).
           const double p0 = c.p[k][d], p1 = c.p[k + 1][d], m0 = h * c.m[k][d], m1 = h * c.m[k + 1][d];
-          const double a = 2 * p0 + m0 - 2 * p1 + m1, b = -3 * p0 - 2 * m0 + 3 * p1 - m1, c1 = m0;
-          const auto at = [&](double s) { return ((a * s + b) * s + c1) * s + p0; };
+          const double a = 2 * p0 + m0 - 2 * p1 + m1, b = -3 * p0 - 2 * m0 + 3 * p1 - m1;
           double peak = std::max(std::abs(p0), std::abs(p1));
-          const double disc = b * b - 3 * a * c1;
+          const double disc = b * b - 3 * a * m0;
           if (a != 0.0 && disc >= 0.0) {
             for (const double s : {(-b + std::sqrt(disc)) / (3 * a), (-b - std::sqrt(disc)) / (3 * a)})
-              if (s > 0.0 && s < 1.0) peak = std::max(peak, std::abs(at(s)));
+              if (s > 0.0 && s < 1.0) peak = std::max(peak, std::abs(at(s)[d]));
           } else if (a == 0.0 && b != 0.0) {
-            const double s = -c1 / (2 * b);
-            if (s > 0.0 && s < 1.0) peak = std::max(peak, std::abs(at(s)));
+            const double s = -m0 / (2 * b);
+            if (s > 0.0 && s < 1.0) peak = std::max(peak, std::abs(at(s)[d]));
           }
           const bool finite = std::isfinite(m0) && std::isfinite(m1) && std::isfinite(peak);
           if (!finite || !(peak <= max_hand_coordinate))
-            throw InputError(
-                file, field,
-                fmt::format("the {} hand's curve between t = {} s and t = {} s {} in {} (its "
-                            "samples there are too close in time for the distance between them); "
-                            "it must stay within +-{} m",
-                            hand == Hand::Left ? "left" : "right", nlohmann::json(c.t[k]).dump(),
-                            nlohmann::json(c.t[k + 1]).dump(),
-                            finite ? fmt::format("reaches {:.6g} m", peak) : "is not finite",
-                            "xyz"[d], max_hand_coordinate));
+            return fmt::format(
+                "the {} hand's curve between t = {} s and t = {} s {} in {} (its samples there "
+                "are too close in time for the distance between them); it must stay within +-{} m",
+                hand == Hand::Left ? "left" : "right", nlohmann::json(c.t[k]).dump(),
+                nlohmann::json(c.t[k + 1]).dump(),
+                finite ? fmt::format("reaches {:.6g} m", peak) : "is not finite", "xyz"[d],
+                max_hand_coordinate);
         }
       }
       begin = end;
     }
   }
+  return std::nullopt;
 }
 
 namespace detail {

@@ -119,6 +119,8 @@ class HandTrack {
   /// some distance between them give a tangent that throws the curve far away between its
   /// neighbours (1 us apart: 250 m; 2.8e-17 s apart: 3.6e13 m; 5e-324 s apart: NaN).
   void check_curve_bound(const std::string& file, const std::string& field) const;
+  /// What check_curve_bound would report, or nullopt when both curves stay within the bound.
+  std::optional<std::string> curve_bound_violation() const;
   /// Stretches of a hand's bridged samples, interpolated separately (0 without samples).
   std::size_t runs(Hand hand) const { return curve(hand).run_end.size(); }
 

@@ -1,5 +1,8 @@
 #include "experiments/live/live_hands.hpp"
 
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 
 namespace drape {
@@ -27,18 +30,28 @@ void LiveHands::add_key(double t, const std::string& key) {
   m_keys.push_back(std::move(frame));
 }
 
+bool LiveHands::usable(const HandFrame& frame, Hand hand) const {
+  const auto& s = sample_of(frame, hand);
+  return s && !(s->inferred && m_policy.inferred == InferredPolicy::Drop);
+}
+
+const HandFrame* LiveHands::last_usable(Hand hand) const {
+  const auto usable = [&](const HandFrame& f) { return this->usable(f, hand); };
+  const auto last = std::find_if(m_frames.rbegin(), m_frames.rend(), usable);
+  return last == m_frames.rend() ? nullptr : &*last;
+}
+
 // A new sample of a hand changes the interpolation back to the sample before its last one (the
 // tangent at the last sample, docs/input.md "Interpolation"), unless it starts a new run, which
-// it must once the last sample is max_gap older than any later sample can be.
+// it must once the last sample is max_gap older than any later sample can be. A hand that is
+// gone comes back only in a new run (sample()), so it limits nothing.
 double LiveHands::hand_limit(Hand hand, double next_sample) const {
-  const auto usable = [&](const HandFrame& f) {
-    const auto& s = sample_of(f, hand);
-    return s && !(s->inferred && m_policy.inferred == InferredPolicy::Drop);
-  };
-  auto last = std::find_if(m_frames.rbegin(), m_frames.rend(), usable);
-  if (last == m_frames.rend() || next_sample - last->t >= m_policy.max_gap)
-    return std::numeric_limits<double>::infinity();
-  auto before = std::find_if(last + 1, m_frames.rend(), usable);
+  constexpr double infinity = std::numeric_limits<double>::infinity();
+  const HandFrame* last = last_usable(hand);
+  if (!last || m_gone[index(hand)] || next_sample - last->t >= m_policy.max_gap) return infinity;
+  const auto usable = [&](const HandFrame& f) { return this->usable(f, hand); };
+  const auto from = std::make_reverse_iterator(m_frames.begin() + (last - m_frames.data()));
+  const auto before = std::find_if(from, m_frames.rend(), usable);
   if (before == m_frames.rend() || last->t - before->t > m_policy.max_gap) return last->t;
   return before->t;
 }
@@ -58,15 +71,47 @@ void LiveHands::sample(double now, double wanted, HandTrack& track) {
     // The track is rebuilt either way: it takes the keys added since the last turn.
     frame.t = m_limit >= wanted ? -infinity : m_frames.back().t + std::max(m_margin, lead / 100);
   }
-  if (frame.t > -infinity) {
+  std::optional<HandSample> latest[2];
+  {
     std::lock_guard<std::mutex> lock(m_mutex);
-    frame.left = m_latest[0];
-    frame.right = m_latest[1];
+    latest[0] = m_latest[0];
+    latest[1] = m_latest[1];
+  }
+  for (const Hand hand : {Hand::Left, Hand::Right}) {
+    const std::size_t h = index(hand);
+    if (!latest[h]) {
+      // Gone: its next sample, whenever it comes back, must not bend the curve the simulation
+      // may already have passed, so it is taken only where it starts a new run (more than
+      // max_gap after the hand's last sample). Without this a hand taken away held the
+      // simulation at its sample before the last for good (a run with no hand stopped).
+      m_gone[h] = last_usable(hand) != nullptr;
+    } else if (m_gone[h]) {
+      const HandFrame* last = last_usable(hand);
+      if (!last || frame.t - last->t > m_policy.max_gap)
+        m_gone[h] = false;
+      else
+        latest[h].reset();  // back too soon: it waits for a later turn
+    }
+  }
+  if (frame.t > -infinity) {
+    frame.left = latest[0];
+    frame.right = latest[1];
   }
   // Only frames that say something (their times increase: the track needs distinct knots).
-  if (frame.left || frame.right)
-    m_frames.push_back(std::move(frame));
+  const bool added = frame.left || frame.right;
+  if (added) m_frames.push_back(std::move(frame));
   track = HandTrack(m_frames, SensorTransform{}, TimeMap{}, m_policy);
+  if (added) {
+    // Each position is within the scene bound (POST /hand, the bridge), but two far apart and
+    // close in time throw the curve far out between its samples, as in a recording (input.md,
+    // Ranges): such a frame is left out, the latest hands wait for a later, wider-spaced turn.
+    if (auto violation = track.curve_bound_violation()) {
+      m_left_out.push_back(
+          fmt::format("t = {} s: {}", nlohmann::json(m_frames.back().t).dump(), *violation));
+      m_frames.pop_back();
+      track = HandTrack(m_frames, SensorTransform{}, TimeMap{}, m_policy);
+    }
+  }
   track.add_keys(m_keys, TimeMap{});
   const double next = m_frames.empty() ? now : m_frames.back().t;
   m_limit = std::min(hand_limit(Hand::Left, next), hand_limit(Hand::Right, next)) - m_margin;

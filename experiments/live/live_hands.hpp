@@ -6,6 +6,7 @@
 #include <limits>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/input/hand_track.hpp"
@@ -35,10 +36,17 @@ class LiveHands {
   /// The time the simulation may advance to: before the stretch of the track that the next
   /// sample can still change (+infinity when no hand constrains it).
   double limit() const { return m_limit; }
+  /// Why each frame left out of the track so far was (its curve left the scene bound).
+  const std::vector<std::string>& left_out() const { return m_left_out; }
   /// Every hand frame and key so far, time-ordered, frames at equal times merged.
   std::vector<HandFrame> recording() const;
 
  private:
+  static std::size_t index(Hand hand) { return hand == Hand::Left ? 0 : 1; }
+  /// Whether `frame` has a sample of `hand` that the track uses (the inferred policy).
+  bool usable(const HandFrame& frame, Hand hand) const;
+  /// The newest frame with a usable sample of `hand` (nullptr: none).
+  const HandFrame* last_usable(Hand hand) const;
   double hand_limit(Hand hand, double next_sample) const;
 
   TrackPolicy m_policy;
@@ -47,6 +55,9 @@ class LiveHands {
   std::mutex m_mutex;  ///< guards m_latest
   std::optional<HandSample> m_latest[2];
   std::vector<HandFrame> m_frames;
+  /// Per hand (left, right): taken away after it had samples, and not back in a new run yet.
+  bool m_gone[2] = {false, false};
+  std::vector<std::string> m_left_out;
   double m_limit = std::numeric_limits<double>::infinity();
 };
 

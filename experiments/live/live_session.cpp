@@ -232,6 +232,10 @@ std::string LiveSession::run() {
     double target = std::min(wall, simulation.time() + frame_interval);
     if (m_live_hands) {
       m_live_hands->sample(simulation.time(), target, m_run->input()->track);
+      const auto& left_out = m_live_hands->left_out();
+      for (; m_left_out_reported < left_out.size(); ++m_left_out_reported)
+        fmt::print(stderr, "drapelab live: hand frame at {}: left out\n",
+                   left_out[m_left_out_reported]);
       target = std::min(target, m_live_hands->limit());
     }
     running = simulation.advance(target);
@@ -257,7 +261,8 @@ void LiveSession::write_outputs(const std::string& status) {
   summary["status"] = status;
   summary["live"] = {{"recording", live_run_file::recording},
                      {"replay", live_run_file::replay_scene},
-                     {"hands", m_live_hands ? "live" : "scene"}};
+                     {"hands", m_live_hands ? "live" : "scene"},
+                     {"hand_frames_left_out", m_live_hands ? m_live_hands->left_out().size() : 0}};
   if (status != "diverged" && status != "failed")
     write_state_csv(m_out_dir / "state.csv", m_run->system(), simulation.state());
   write_json(m_out_dir / "summary.json", summary);

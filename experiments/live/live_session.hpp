@@ -74,6 +74,7 @@ class LiveSession {
   std::unique_ptr<HandsWriter> m_hands;
   std::unique_ptr<FrameRecorder> m_frames;
   std::unique_ptr<LiveHands> m_live_hands;
+  std::size_t m_left_out_reported = 0;  ///< LiveHands::left_out() entries printed so far
   std::string m_scene_json;
   std::atomic<bool> m_stop{false};
   std::atomic<bool> m_finished{false};

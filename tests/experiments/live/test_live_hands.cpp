@@ -122,20 +122,74 @@ TEST(LiveHands, FramesStayNearTheSimulationWhenItsStepIsLongerThanATurn) {
   }
 }
 
-TEST(LiveHands, AHandGoneLongerThanMaxGapNoLongerLimits) {
+// A hand taken away (POST /hand with "tracked": false, a sensor that lost it) limits nothing:
+// it comes back only in a new run, more than max_gap after its last sample, so its old curve
+// never changes. It used to hold the loop at its sample before the last for good.
+TEST(LiveHands, AHandTakenAwayLimitsNothingAndComesBackInANewRun) {
   TrackPolicy policy;
   policy.max_gap = 0.15;
   LiveHands hands(policy, {}, margin);
   HandTrack track;
   hands.set(Hand::Right, at(0.0, 1.0, 0.3));
-  hands.sample(0.0, ahead, track);
-  hands.sample(0.05, ahead, track);
-  hands.set(Hand::Right, std::nullopt);
-  hands.sample(0.1, ahead, track);  // no hand: no frame; the last sample (0.15) still limits
+  hands.sample(0.0, ahead, track);   // a sample at 0.1
+  hands.sample(0.05, ahead, track);  // and at 0.15
   EXPECT_DOUBLE_EQ(hands.limit(), LiveHands::lead - margin);
-  hands.set(Hand::Left, at(0.0, 1.0, 0.3));
-  hands.sample(0.2, ahead, track);  // 0.3 - 0.15 = max_gap: any later right sample starts a new run
-  EXPECT_DOUBLE_EQ(hands.limit(), 0.3 - margin);  // the left hand's only sample
+  hands.set(Hand::Right, std::nullopt);
+  hands.sample(0.1, ahead, track);  // no hand: no frame, no limit
+  EXPECT_TRUE(std::isinf(hands.limit()));
+  hands.set(Hand::Right, at(0.2, 1.0, 0.3));
+  hands.sample(0.19, ahead, track);  // 0.29 is within max_gap of 0.15: not yet a new run
+  EXPECT_EQ(hands.recording().size(), 2u);
+  EXPECT_TRUE(std::isinf(hands.limit()));
+  hands.sample(0.21, ahead, track);  // 0.31: a new run, limited by its one sample
+  ASSERT_EQ(hands.recording().size(), 3u);
+  EXPECT_DOUBLE_EQ(hands.recording().back().t, 0.21 + LiveHands::lead);
+  EXPECT_EQ(track.runs(Hand::Right), 2u);
+  EXPECT_DOUBLE_EQ(hands.limit(), 0.21 + LiveHands::lead - margin);
+  EXPECT_EQ(track.motion(Hand::Right, 0.25)->position, Vec3(0.0, 1.0, 0.3));  // the old run's end
+}
+
+// The live loop with both hands taken away keeps up with the wall clock.
+TEST(LiveHands, ARunWhoseHandsAreTakenAwayKeepsMoving) {
+  LiveHands hands(TrackPolicy{}, {}, margin);
+  HandTrack track;
+  hands.set(Hand::Left, at(-0.1, 1.0, 0.3));
+  hands.set(Hand::Right, at(0.1, 1.0, 0.3));
+  double now = 0.0;
+  for (int turn = 0; turn < 90; ++turn) {  // 3 s of 1/30 s turns
+    if (turn == 10) hands.set(Hand::Left, std::nullopt);
+    if (turn == 12) hands.set(Hand::Right, std::nullopt);
+    hands.sample(now, ahead, track);
+    now = std::min(now + 1.0 / 30, hands.limit());
+  }
+  EXPECT_DOUBLE_EQ(now, 90.0 / 30);
+}
+
+// A hand that jumps 9.9 m between frames 1 ms apart (a run at the limit takes its frame one
+// spacing after the last) would give the last sample a tangent of 9600 m/s that throws the
+// curve before it 47 m out: that frame is left out with its reason, the track stays within the
+// scene bound, and the jump enters at the next turn's wider spacing.
+TEST(LiveHands, AFrameThatThrowsTheCurveOutOfTheSceneIsLeftOut) {
+  LiveHands hands(TrackPolicy{}, {}, margin);
+  HandTrack track;
+  hands.set(Hand::Right, at(0.0, 1.0, 0.3));
+  hands.sample(0.0, ahead, track);     // 0.1
+  hands.sample(0.0333, ahead, track);  // 0.1333
+  hands.set(Hand::Right, at(9.9, 1.0, 0.3));
+  hands.sample(0.0333, ahead, track);  // at the limit: 0.1343, 9.9 m in 1 ms
+  EXPECT_EQ(hands.recording().size(), 2u);
+  ASSERT_EQ(hands.left_out().size(), 1u);
+  EXPECT_NE(hands.left_out()[0].find("t = 0.1343"), std::string::npos) << hands.left_out()[0];
+  EXPECT_NE(hands.left_out()[0].find("right hand's curve between t = 0.1 s and t = 0.1333 s"),
+            std::string::npos) << hands.left_out()[0];
+  EXPECT_NE(hands.left_out()[0].find("it must stay within +-10 m"), std::string::npos);
+  EXPECT_FALSE(track.curve_bound_violation());
+  EXPECT_DOUBLE_EQ(hands.limit(), 0.1 - margin);  // the frames that stayed
+  hands.sample(0.0666, ahead, track);  // 0.1666: 9.9 m in 33 ms
+  EXPECT_EQ(hands.recording().size(), 3u);
+  EXPECT_EQ(hands.left_out().size(), 1u);
+  EXPECT_FALSE(track.curve_bound_violation());
+  EXPECT_EQ(track.motion(Hand::Right, 0.0666 + LiveHands::lead)->position.x(), 9.9);
 }
 
 TEST(LiveHands, RecordingMergesKeysIntoFramesInTimeOrder) {
