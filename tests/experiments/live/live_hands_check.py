@@ -4,7 +4,8 @@
 not JSON (NaN), a coordinate out of range, a missing one and an unknown hand with 400 and a
 message; a valid one moves the right hand to the posted point; moved onto particle (14, 10) the
 hand holds it; a sensor bridge client writing JSON Lines (a header, three malformed lines, frames)
-moves the hand and the held particle with it; `r` releases. After SIGINT: the summary has the
+moves the hand and the held particle with it; `r` releases; the hand taken away, the run goes
+on. After SIGINT: the summary has the
 hold and the release, the malformed lines were reported and ignored, recording.jsonl holds the
 hand frames, and `drapelab run OUT/scene.json` replays the same events. Without --live-hands
 a scene with recorded hands answers POST /hand with 409.
@@ -87,6 +88,12 @@ def main():
 
         assert run.post("/key", "r") == (200, "ok\n")
         run.wait_for(lambda f: any(e["type"] == "release" for e in f["events"]), "the release")
+        # the hand taken away: the run goes on without it (it used to stop for good at the
+        # hand's sample before the last)
+        assert run.post("/hand", '{"hand": "right", "tracked": false}') == (200, "ok\n")
+        gone = run.wait_for(lambda f: not right_hand(f)["available"], "the hand taken away")
+        frame = run.wait_for(lambda f: f["t"] > gone["t"] + 1.0, "the run going on without a hand")
+        print(f"hand taken away at t = {gone['t']:.3f} s; the run at t = {frame['t']:.3f} s")
         code, stdout, stderr = run.stop()
         assert code == 0, (code, stdout, stderr)
         assert "sensor bridge: 3 frames, 3 malformed lines ignored" in stdout, stdout
