@@ -14,6 +14,7 @@
 #include "experiments/cli/decimal_integer.hpp"
 #include "experiments/sweep/experiment.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
+#include "experiments/sweep/experiment_merge.hpp"
 #include "experiments/sweep/experiment_runner.hpp"
 #include "experiments/sweep/run_validation.hpp"
 

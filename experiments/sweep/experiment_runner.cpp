@@ -20,6 +20,7 @@
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "experiments/sweep/results_table.hpp"
 #include "experiments/sweep/run_progress_file.hpp"
+#include "experiments/sweep/stored_runs.hpp"
 #include "experiments/sweep/run_validation.hpp"
 #include "experiments/sweep/deliberate_crash.hpp"
 #include "experiments/run/run_files.hpp"
@@ -30,58 +31,6 @@ namespace drape {
 namespace fs = std::filesystem;
 
 namespace {
-
-// What a finished folder's run.json must hold to count as this run: its definition, not its
-// place. `planned` is the run as RunSpec::to_json (an entry of experiment.json's plan).
-nlohmann::json run_identity(nlohmann::json planned) {
-  planned.erase("index");
-  planned.erase("reference");
-  return planned;
-}
-
-// A FIFO or a device where a JSON file belongs counts as no file (opening it would wait for a
-// writer for ever); a run with one is run again, which clears its folder first.
-std::optional<nlohmann::json> read_json_if_present(const fs::path& file) {
-  if (unreadable_file_reason(file.string())) return std::nullopt;
-  std::ifstream in(file);
-  if (!in) return std::nullopt;
-  nlohmann::json value = nlohmann::json::parse(in, nullptr, false);
-  if (value.is_discarded()) return std::nullopt;
-  return value;
-}
-
-// The result.json of run `id` in `dir`: its row, or none with why (`problem` empty when there is
-// no file yet). A file that is no result of this run (cut, edited, copied from another run)
-// leaves the run unfinished, so that resume reruns it and merge lists it.
-struct StoredResult {
-  std::optional<nlohmann::json> row;
-  std::string problem;
-};
-
-StoredResult read_result(const fs::path& dir, const std::string& id) {
-  const fs::path file = dir / experiment_run_file::result;
-  if (!fs::exists(file)) return {};
-  if (const auto reason = unreadable_file_reason(file.string()))
-    return {std::nullopt, file.string() + ": " + *reason};
-  std::ifstream in(file);
-  nlohmann::json row = nlohmann::json::parse(in, nullptr, false);
-  const std::string problem = row.is_discarded() ? "is not valid JSON" : result_row_problem(row, id);
-  if (!problem.empty()) return {std::nullopt, file.string() + ": " + problem};
-  return {std::move(row), ""};
-}
-
-// The result of the plan's run `planned` (an entry of experiment.json's plan) in folder `dir`,
-// as read_result: a folder whose run.json is not the run's identity (edited, or copied from
-// another run) holds no result of it, neither for resume nor for merge.
-StoredResult finished_run(const fs::path& dir, const nlohmann::json& planned) {
-  const fs::path file = dir / experiment_run_file::identity;
-  const auto spec = read_json_if_present(file);
-  if (spec && *spec != run_identity(planned))
-    return {std::nullopt, file.string() + ": is not this run of the plan"};
-  StoredResult result = read_result(dir, planned["id"].get<std::string>());
-  if (result.row && !spec) return {std::nullopt, file.string() + ": missing or unreadable"};
-  return result;
-}
 
 // The row of a run finished earlier, or nothing when it must run (again): a run that could not
 // run or crashed is retried, in case the cause (a full disk, a bug since fixed) is gone.
@@ -211,78 +160,6 @@ nlohmann::json experiment_header(const Experiment& e, const std::vector<RunSpec>
           {"experiment", e.source},   {"plan", runs}};
 }
 
-void write_table(const fs::path& stem, const nlohmann::json& header,
-                 const std::vector<nlohmann::json>& rows, const std::string& shard) {
-  const auto parameters = header["parameters"].get<std::vector<std::string>>();
-  const auto columns = result_columns(parameters, rows);
-  nlohmann::json doc = {{"name", header["name"]},       {"question", header["question"]},
-                        {"metrics", header["metrics"]}, {"parameters", parameters},
-                        {"plan_size", header["plan_size"]},
-                        {"shard", shard.empty() ? nlohmann::json() : nlohmann::json(shard)},
-                        {"columns", columns},           {"runs", rows}};
-  write_json(stem.string() + ".json", doc, process_tmp_suffix());
-  write_results_csv(stem.string() + ".csv", columns, rows);
-  // An ensemble (`repeats`) also gets its statistics per group beside results.csv.
-  if (shard.empty() &&
-      std::find(parameters.begin(), parameters.end(), repeat_parameter) != parameters.end())
-    write_ensemble_summary(stem.parent_path() / "summary.csv", parameters, rows);
-}
-
-// The fields merge and resume read from a folder's experiment.json, each of its type: a
-// folder written by drapelab has them; a damaged or crafted one is named, field by field,
-// instead of failing in the middle of the merge. A plan id names a folder under runs/, so it
-// must be one plain name (a "../x" id made merge remove a folder outside DIR).
-void check_header(const nlohmann::json& header, const std::string& file) {
-  const auto require = [&](const char* key, bool ok, const char* expected) {
-    if (!ok) throw InputError(file, key, std::string("expected ") + expected);
-  };
-  const auto strings = [](const nlohmann::json& j) {
-    return j.is_array() && std::all_of(j.begin(), j.end(), [](const auto& e) { return e.is_string(); });
-  };
-  require("name", header.contains("name") && header["name"].is_string(), "a string");
-  require("question", header.contains("question") && header["question"].is_string(), "a string");
-  require("metrics", header.contains("metrics") && strings(header["metrics"]), "a list of strings");
-  require("parameters", header.contains("parameters") && strings(header["parameters"]),
-          "a list of strings");
-  require("plan_size", header.contains("plan_size") && header["plan_size"].is_number_unsigned(),
-          "a count");
-  const nlohmann::json& plan = header["plan"];
-  require("plan", plan.is_array(), "a list of runs");
-  for (std::size_t k = 0; k < plan.size(); ++k) {
-    const std::string field = fmt::format("plan[{}]", k);
-    if (!plan[k].is_object() || !plan[k].contains("reference"))
-      throw InputError(file, field, "expected a run of the plan (an object with id and reference)");
-    const nlohmann::json& id = plan[k].value("id", nlohmann::json());
-    if (!id.is_string() || id.get<std::string>().empty() || id == "." || id == ".." ||
-        id.get<std::string>().find_first_of(std::string("/\\\0", 3)) != std::string::npos)
-      throw InputError(file, field + ".id", "expected a run folder's name (no path): " + id.dump());
-  }
-}
-
-nlohmann::json read_header(const fs::path& dir) {
-  const fs::path file = dir / "experiment.json";
-  auto header = read_json_if_present(file);
-  if (!header || !header->contains("plan"))
-    throw InputError(file.string(), "", "not an experiment output folder (no plan)");
-  check_header(*header, file.string());
-  return *header;
-}
-
-std::vector<std::string> plan_ids(const nlohmann::json& header) {
-  std::vector<std::string> ids;
-  for (const auto& run : header["plan"]) ids.push_back(run["id"].get<std::string>());
-  return ids;
-}
-
-// The first key of the header of `source` that differs from `ours`, or "": two folders are of
-// one experiment when everything but the definition's path (shards run on other machines) is
-// the same; equal plans alone would merge another experiment's runs of the same values.
-std::string header_difference(const nlohmann::json& source, const nlohmann::json& ours) {
-  for (const char* key : {"name", "question", "metrics", "parameters", "experiment", "plan"})
-    if (source.value(key, nlohmann::json()) != ours.value(key, nlohmann::json())) return key;
-  return "";
-}
-
 }  // namespace
 
 ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOptions& options) {
@@ -360,61 +237,12 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
 
   if (options.shard) {
     fs::create_directories(options.out_dir / "shards");
-    write_table(options.out_dir / "shards" / options.shard->tag(), header, rows,
+    write_results_table(options.out_dir / "shards" / options.shard->tag(), header, rows,
                 fmt::format("{}/{}", options.shard->index, options.shard->count));
   } else {
-    write_table(options.out_dir / "results", header, rows, "");
+    write_results_table(options.out_dir / "results", header, rows, "");
   }
   return tally;
-}
-
-std::vector<std::string> merge_results(const fs::path& out_dir, const std::vector<fs::path>& sources) {
-  if (!fs::exists(out_dir / "experiment.json") && !sources.empty()) {
-    const nlohmann::json first = read_header(sources.front());  // before DIR exists: no empty folder
-    fs::create_directories(out_dir);
-    write_json(out_dir / "experiment.json", first, process_tmp_suffix());
-  }
-  const nlohmann::json header = read_header(out_dir);
-  const std::vector<std::string> ids = plan_ids(header);
-  for (const fs::path& source : sources) {
-    if (fs::equivalent(source, out_dir)) continue;
-    const std::string differs = header_difference(read_header(source), header);
-    if (!differs.empty())
-      throw InputError((source / "experiment.json").string(), differs,
-                       "differs from " + (out_dir / "experiment.json").string() +
-                           ": not a folder of the same experiment");
-    for (std::size_t k = 0; k < ids.size(); ++k) {
-      const std::string& id = ids[k];
-      const fs::path from = source / "runs" / id, to = out_dir / "runs" / id;
-      if (!finished_run(from, header["plan"][k]).row || finished_run(to, header["plan"][k]).row)
-        continue;
-      fs::remove_all(to);
-      fs::create_directories(to.parent_path());
-      try {
-        fs::copy(from, to, fs::copy_options::recursive);
-      } catch (const fs::filesystem_error& e) {
-        // A full disk: the half-copied run is removed, so that it is not taken as finished.
-        std::error_code ignored;
-        fs::remove_all(to, ignored);
-        throw OutputError("cannot copy " + from.string() + " to " + to.string() + ": " +
-                          e.code().message());
-      }
-    }
-  }
-  std::vector<nlohmann::json> rows;
-  std::vector<std::string> missing;
-  for (std::size_t k = 0; k < ids.size(); ++k) {
-    auto [row, problem] = finished_run(out_dir / "runs" / ids[k], header["plan"][k]);
-    if (!row) {
-      missing.push_back(problem.empty() ? ids[k] : ids[k] + ": " + problem);
-      continue;
-    }
-    (*row)["index"] = static_cast<int>(k);
-    (*row)["reference"] = header["plan"][k]["reference"];
-    rows.push_back(std::move(*row));
-  }
-  write_table(out_dir / "results", header, rows, "");
-  return missing;
 }
 
 }  // namespace drape

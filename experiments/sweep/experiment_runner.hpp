@@ -1,6 +1,6 @@
 #pragma once
-// Runs the plan of an experiment, each run in its own child process, resumes finished runs, writes the results
-// table; merges the runs of shards that ran elsewhere (docs/experiments.md).
+// Runs the plan of an experiment, each run in its own child process, resumes finished runs,
+// writes the results table (docs/experiments.md); experiment_merge.hpp merges shards.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -34,12 +34,5 @@ struct ExperimentTally {
 /// results.{csv,json} for a whole plan, shards/K-of-N.{csv,json} for a shard.
 /// Throws InputError when a run's scene and overrides are invalid (checked before any run).
 ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOptions& options);
-
-/// Copies the runs of `sources` (other output folders of the same experiment) into out_dir and
-/// writes out_dir/results.{csv,json} from every finished run; returns the ids still missing,
-/// each followed by its result.json and what is wrong with it when it has one that is no
-/// result of the run (result_row_problem). A source's run replaces only a run without a valid one.
-std::vector<std::string> merge_results(const std::filesystem::path& out_dir,
-                                       const std::vector<std::filesystem::path>& sources);
 
 }  // namespace drape

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "experiments/run/run_files.hpp"
+#include "experiments/sweep/ensemble_summary.hpp"
 
 namespace drape {
 
@@ -153,5 +154,23 @@ void write_results_csv(const std::filesystem::path& file, const std::vector<std:
 }
 
 std::string process_tmp_suffix() { return fmt::format(".tmp.{}", ::getpid()); }
+
+void write_results_table(const std::filesystem::path& stem, const nlohmann::json& header,
+                 const std::vector<nlohmann::json>& rows, const std::string& shard) {
+  const auto parameters = header["parameters"].get<std::vector<std::string>>();
+  const auto columns = result_columns(parameters, rows);
+  nlohmann::json doc = {{"name", header["name"]},       {"question", header["question"]},
+                        {"metrics", header["metrics"]}, {"parameters", parameters},
+                        {"plan_size", header["plan_size"]},
+                        {"shard", shard.empty() ? nlohmann::json() : nlohmann::json(shard)},
+                        {"columns", columns},           {"runs", rows}};
+  write_json(stem.string() + ".json", doc, process_tmp_suffix());
+  write_results_csv(stem.string() + ".csv", columns, rows);
+  // An ensemble (`repeats`) also gets its statistics per group beside results.csv.
+  if (shard.empty() &&
+      std::find(parameters.begin(), parameters.end(), repeat_parameter) != parameters.end())
+    write_ensemble_summary(stem.parent_path() / "summary.csv", parameters, rows);
+}
+
 
 }  // namespace drape

@@ -24,6 +24,11 @@ std::vector<std::string> result_columns(const std::vector<std::string>& paramete
 /// Writes rows as CSV with the given columns (JSON values dumped, strings quoted when needed).
 void write_results_csv(const std::filesystem::path& file, const std::vector<std::string>& columns,
                        const std::vector<nlohmann::json>& rows);
+/// Writes `stem`.json and `stem`.csv: the rows with the experiment.json `header`'s name,
+/// question, metrics, parameters and plan size, and `shard` ("K/N", or "" for the whole plan);
+/// a whole ensemble's (`repeats`) statistics per group go to summary.csv beside them.
+void write_results_table(const std::filesystem::path& stem, const nlohmann::json& header,
+                         const std::vector<nlohmann::json>& rows, const std::string& shard);
 /// `.tmp.PID`: the temporary suffix (write_file_atomic) of the files that the shards of an
 /// experiment, on one shared folder, write alike: each process its own temporary.
 std::string process_tmp_suffix();

@@ -10,6 +10,7 @@
 
 #include "core/scene/input_error.hpp"
 #include "experiments/sweep/experiment.hpp"
+#include "experiments/sweep/experiment_runner.hpp"
 
 namespace drape::experiment_fixtures {
 
@@ -74,5 +75,20 @@ inline json without_wall_time(json results) {
   results.erase("shard");
   return results;
 }
+
+// The two-by-three experiment in a fresh folder, its plan, and options to run it into out/.
+struct SmallExperiment {
+  explicit SmallExperiment(const std::string& name)
+      : dir(temp_dir(name)),
+        experiment(parse(two_by_three(), write_scene(dir).parent_path())),
+        plan(drape::expand_runs(experiment)) {
+    options.out_dir = dir / "out";
+    options.jobs = 2;
+  }
+  fs::path dir;
+  Experiment experiment;
+  std::vector<drape::RunSpec> plan;
+  drape::ExperimentOptions options;
+};
 
 }  // namespace drape::experiment_fixtures

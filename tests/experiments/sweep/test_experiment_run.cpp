@@ -7,6 +7,7 @@
 
 #include <sys/stat.h>
 
+#include "experiments/sweep/experiment_merge.hpp"
 #include "experiments/sweep/experiment_runner.hpp"
 #include "tests/experiments/sweep/experiment_fixtures.hpp"
 #include "tests/support/test_support.hpp"
@@ -148,21 +149,6 @@ TEST(ExperimentRun, WritesTablesResumesAndMergesShardsToTheSameResults) {
   EXPECT_EQ(without_wall_time(read_json(merged / "results.json")), without_wall_time(whole));
 }
 
-// The two-by-three experiment in a fresh folder, its plan, and options to run it into out/.
-struct SmallExperiment {
-  explicit SmallExperiment(const std::string& name)
-      : dir(temp_dir(name)),
-        experiment(parse(two_by_three(), write_scene(dir).parent_path())),
-        plan(drape::expand_runs(experiment)) {
-    options.out_dir = dir / "out";
-    options.jobs = 2;
-  }
-  fs::path dir;
-  Experiment experiment;
-  std::vector<drape::RunSpec> plan;
-  drape::ExperimentOptions options;
-};
-
 // A result.json that is no result of its run (cut, edited, from elsewhere) leaves the run
 // unfinished: merge lists it with the file and what is wrong, resume reruns it.
 TEST(ExperimentRun, ResultFilesThatAreNoResultAreRerunAndNamedByMerge) {
@@ -207,79 +193,6 @@ TEST(ExperimentRun, ResultFilesThatAreNoResultAreRerunAndNamedByMerge) {
   EXPECT_EQ(t.ok + t.unstable, 6);
   EXPECT_TRUE(drape::merge_results(options.out_dir, {}).empty());
   EXPECT_EQ(without_wall_time(read_json(options.out_dir / "results.json")), without_wall_time(whole));
-}
-
-// Merge takes a run only from a folder of the same experiment, and only when the run's
-// run.json is the plan's run: a definition with other metrics but the same values has the same
-// plan (ids), and an edited run.json is another run.
-TEST(ExperimentRun, MergeTakesRunsOnlyOfThisExperimentAndItsPlannedRuns) {
-  const SmallExperiment small("merge_checks");
-  drape::run_experiment(small.experiment, small.options);
-  const fs::path ours = small.dir / "merged";
-  json other_source = two_by_three();
-  other_source["metrics"] = json::array({"vibration"});
-  drape::ExperimentOptions other = small.options;
-  other.out_dir = small.dir / "other";
-  drape::run_experiment(parse(other_source, small.dir), other);
-  ASSERT_EQ(drape::merge_results(ours, {small.options.out_dir}).size(), 0u);
-  try {
-    drape::merge_results(ours, {other.out_dir});
-    ADD_FAILURE() << "merged a folder of another experiment";
-  } catch (const drape::InputError& e) {
-    EXPECT_EQ(e.field(), "metrics");
-    EXPECT_NE(std::string(e.what()).find("not a folder of the same experiment"), std::string::npos);
-  }
-  // An edited run.json: the run is no longer the plan's, in the merged folder or in a source.
-  const fs::path edited = ours / "runs" / small.plan[2].id / "run.json";
-  json spec = read_json(edited);
-  spec["scene"] = "another_scene.json";
-  std::ofstream(edited) << spec;
-  const fs::path source_spec = small.options.out_dir / "runs" / small.plan[2].id / "run.json";
-  std::ofstream(source_spec) << spec;
-  EXPECT_EQ(drape::merge_results(ours, {small.options.out_dir}),
-            std::vector<std::string>({small.plan[2].id + ": " + edited.string() +
-                                      ": is not this run of the plan"}));
-}
-
-// A damaged or crafted experiment.json is named field by field (exit 2), and a plan id that
-// is a path is refused before anything is removed (a "../victim" id removed a folder outside).
-TEST(ExperimentRun, MergeChecksTheHeaderItReads) {
-  const SmallExperiment small("merge_header");
-  drape::run_experiment(small.experiment, small.options);
-  const fs::path header_file = small.options.out_dir / "experiment.json";
-  const json header = read_json(header_file);
-  const fs::path victim = small.dir / "victim";
-  fs::create_directories(victim);
-  const auto field_of = [&](const json& damaged) {
-    std::ofstream(header_file) << damaged;
-    try {
-      drape::merge_results(small.options.out_dir, {});
-    } catch (const drape::InputError& e) {
-      EXPECT_EQ(e.file(), header_file.string());
-      return e.field();
-    }
-    return std::string("<no error>");
-  };
-  json crafted = header;
-  crafted["plan"][0]["id"] = "../../victim";
-  EXPECT_EQ(field_of(crafted), "plan[0].id");
-  crafted["plan"][0]["id"] = victim.string();
-  EXPECT_EQ(field_of(crafted), "plan[0].id");
-  EXPECT_TRUE(fs::exists(victim));
-  json damaged = header;
-  damaged.erase("question");
-  EXPECT_EQ(field_of(damaged), "question");
-  damaged = header;
-  damaged["metrics"] = json::array({1});
-  EXPECT_EQ(field_of(damaged), "metrics");
-  damaged = header;
-  damaged["plan"][1] = 7;
-  EXPECT_EQ(field_of(damaged), "plan[1]");
-  EXPECT_EQ(field_of(header), "<no error>");
-  // A new DIR is made only once the first source's header is read.
-  const fs::path fresh = small.dir / "fresh";
-  EXPECT_THROW(drape::merge_results(fresh, {victim}), drape::InputError);
-  EXPECT_FALSE(fs::exists(fresh));
 }
 
 // A run that segfaults or aborts ends its own child process only (docs/experiments.md,

@@ -1,0 +1,62 @@
+#include "experiments/sweep/stored_runs.hpp"
+
+#include <fstream>
+
+#include "core/scene/json_reader.hpp"
+#include "experiments/sweep/experiment_folder.hpp"
+#include "experiments/sweep/results_table.hpp"
+
+namespace drape {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The result.json of run `id` in `dir`.
+StoredResult read_result(const fs::path& dir, const std::string& id) {
+  const fs::path file = dir / experiment_run_file::result;
+  if (!fs::exists(file)) return {};
+  if (const auto reason = unreadable_file_reason(file.string()))
+    return {std::nullopt, file.string() + ": " + *reason};
+  std::ifstream in(file);
+  nlohmann::json row = nlohmann::json::parse(in, nullptr, false);
+  const std::string problem = row.is_discarded() ? "is not valid JSON" : result_row_problem(row, id);
+  if (!problem.empty()) return {std::nullopt, file.string() + ": " + problem};
+  return {std::move(row), ""};
+}
+
+}  // namespace
+
+// What a finished folder's run.json must hold to count as this run: its definition, not its
+// place. `planned` is the run as RunSpec::to_json (an entry of experiment.json's plan).
+nlohmann::json run_identity(nlohmann::json planned) {
+  planned.erase("index");
+  planned.erase("reference");
+  return planned;
+}
+
+// A FIFO or a device where a JSON file belongs counts as no file (opening it would wait for a
+// writer for ever); a run with one is run again, which clears its folder first.
+std::optional<nlohmann::json> read_json_if_present(const fs::path& file) {
+  if (unreadable_file_reason(file.string())) return std::nullopt;
+  std::ifstream in(file);
+  if (!in) return std::nullopt;
+  nlohmann::json value = nlohmann::json::parse(in, nullptr, false);
+  if (value.is_discarded()) return std::nullopt;
+  return value;
+}
+
+// The result of the plan's run `planned` (an entry of experiment.json's plan) in folder `dir`,
+// as read_result: a folder whose run.json is not the run's identity (edited, or copied from
+// another run) holds no result of it, neither for resume nor for merge.
+StoredResult finished_run(const fs::path& dir, const nlohmann::json& planned) {
+  const fs::path file = dir / experiment_run_file::identity;
+  const auto spec = read_json_if_present(file);
+  if (spec && *spec != run_identity(planned))
+    return {std::nullopt, file.string() + ": is not this run of the plan"};
+  StoredResult result = read_result(dir, planned["id"].get<std::string>());
+  if (result.row && !spec) return {std::nullopt, file.string() + ": missing or unreadable"};
+  return result;
+}
+
+}  // namespace drape
