@@ -11,6 +11,7 @@
 #include "core/scene/input_error.hpp"
 #include "experiments/live/live_hands.hpp"
 #include "experiments/live/live_run_files.hpp"
+#include "experiments/run/event_trace_recorder.hpp"
 #include "experiments/run/frame_recorder.hpp"
 #include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_files.hpp"
@@ -24,6 +25,29 @@ namespace drape {
 namespace {
 
 constexpr double frame_interval = 1.0 / 30.0;  // s of wall clock between frames
+
+// Merges key frames (scene times) into a scene's input.events, mapped back to recording time:
+// each at its place in time, its keys joining an event at the same time, since the events'
+// times must increase (docs/input.md); appended at the end they broke the replay of every
+// scene whose events went on past a live key.
+void add_events(nlohmann::json& input, const std::vector<HandFrame>& key_frames,
+                const TimeMap& time) {
+  nlohmann::json& events = input["events"];
+  if (!events.is_array()) events = nlohmann::json::array();
+  for (const HandFrame& frame : key_frames) {
+    const double t = (frame.t - time.offset) / time.scale;
+    auto at = std::find_if(events.begin(), events.end(),
+                           [&](const nlohmann::json& e) { return e.at("t").get<double>() >= t; });
+    if (at != events.end() && at->at("t").get<double>() == t) {
+      nlohmann::json& keys = (*at)["keys"];
+      if (!keys.is_array()) keys = nlohmann::json::array();
+      for (const std::string& k : frame.keys) keys.push_back(k);
+    } else {
+      nlohmann::json event = {{"t", t}, {"keys", frame.keys}};
+      events.insert(at, std::move(event));
+    }
+  }
+}
 // Behind the wall clock by more than this [s] is "cannot keep up" (docs/live.md).
 constexpr double behind_tolerance = 0.1;
 
@@ -102,6 +126,8 @@ LiveSession::LiveSession(Scene scene, std::filesystem::path out_dir, bool live_h
   simulation.add_observer(*m_hands);
   m_frames = std::make_unique<FrameRecorder>(m_scene.output, m_out_dir, system);
   simulation.add_observer(*m_frames);
+  m_event_frames = std::make_unique<EventTraceRecorder>(m_scene.output, m_out_dir, system);
+  simulation.add_observer(*m_event_frames);
 }
 
 LiveSession::~LiveSession() = default;
@@ -255,29 +281,33 @@ void LiveSession::write_outputs(const std::string& status) {
   const Simulation& simulation = m_run->simulation();
   if (!simulation.status().ended())  // the loop ended the writers itself otherwise
     for (SimulationObserver* o : std::initializer_list<SimulationObserver*>{
-             m_energy.get(), m_hands.get(), m_frames.get()})
+             m_energy.get(), m_hands.get(), m_frames.get(), m_event_frames.get()})
       o->on_end(simulation);
-  nlohmann::json summary = run_summary(*m_run, *m_energy);
-  summary["status"] = status;
-  summary["live"] = {{"recording", live_run_file::recording},
-                     {"replay", live_run_file::replay_scene},
-                     {"hands", m_live_hands ? "live" : "scene"},
-                     {"hand_frames_left_out", m_live_hands ? m_live_hands->left_out().size() : 0}};
   if (status != "diverged" && status != "failed")
     write_state_csv(m_out_dir / "state.csv", m_run->system(), simulation.state());
-  write_json(m_out_dir / "summary.json", summary);
-
   nlohmann::json scene = m_scene.source;
-  write_recording(scene);
+  const bool recorded = write_recording(scene);
   // The replay scene: the live scene, its keys inline, ending where the live run stopped.
   scene["duration"] = simulation.time();
   write_json(m_out_dir / live_run_file::replay_scene, scene);
+  // summary.json last: a folder is complete only when it exists (docs/outputs.md), so a write
+  // that fails before it leaves no folder that looks finished.
+  nlohmann::json summary = run_summary(*m_run, *m_energy);
+  summary["status"] = status;
+  summary["live"] = {
+      {"recording", recorded ? nlohmann::json(live_run_file::recording) : nlohmann::json()},
+      {"replay", live_run_file::replay_scene},
+      {"hands", m_live_hands ? "live" : "scene"},
+      {"hand_frames_left_out", m_live_hands ? m_live_hands->left_out().size() : 0}};
+  write_json(m_out_dir / "summary.json", summary);
 }
 
 // recording.jsonl: the live input in drapelab's recording format, scene times (docs/live.md).
 // With live hands the replay scene plays it as its input.recording; otherwise the scene keeps
-// its own input and gets the live keys added to input.events.
-void LiveSession::write_recording(nlohmann::json& scene) {
+// its own input and gets the live keys merged into input.events in time order. A session with
+// no input at all writes no recording (drapelab's reader refuses a file without frames), and
+// its replay scene has no hand input; returns whether it wrote one.
+bool LiveSession::write_recording(nlohmann::json& scene) {
   const double end = m_run->simulation().time() + 1e-9;  // keys queued but never reached: out
   const std::filesystem::path file = std::filesystem::absolute(m_out_dir / live_run_file::recording);
   const InputConfig& config = m_run->input()->config;
@@ -289,26 +319,26 @@ void LiveSession::write_recording(nlohmann::json& scene) {
       if (frame.left || frame.right || !frame.keys.empty()) recording.frames.push_back(frame);
     }
     InputConfig replay = config;
-    replay.recording = file.string();
+    replay.recording = recording.frames.empty() ? "" : file.string();
     replay.format = RecordingFormat::Drapelab;
     replay.events.clear();
     replay.transform = SensorTransform{};
     replay.time = TimeMap{};
     scene["input"] = input_config_to_json(replay);
   } else {
-    nlohmann::json& events = scene["input"]["events"];
-    if (!events.is_array()) events = nlohmann::json::array();
     for (const auto& [t, k] : m_applied_keys) {
       if (t > end) continue;
       if (recording.frames.empty() || recording.frames.back().t != t)
         recording.frames.push_back(HandFrame{t, std::nullopt, std::nullopt, {}});
       recording.frames.back().keys.push_back(k);
-      events.push_back({{"t", (t - config.time.offset) / config.time.scale}, {"keys", {k}}});
     }
+    add_events(scene["input"], recording.frames, config.time);
     if (scene["input"].contains("recording") && scene["input"]["recording"].is_string())
       scene["input"]["recording"] = std::filesystem::absolute(config.recording).string();
   }
+  if (recording.frames.empty()) return false;
   write_drapelab_recording(recording, file.string());
+  return true;
 }
 
 }  // namespace drape

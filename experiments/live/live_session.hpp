@@ -20,6 +20,7 @@ class SceneSimulation;
 class EnergyWriter;
 class HandsWriter;
 class FrameRecorder;
+class EventTraceRecorder;
 class LiveHands;
 
 /// A scene run against the wall clock; the server threads call key() and frame().
@@ -65,7 +66,7 @@ class LiveSession {
   void publish(double wall, bool behind);
   void apply_keys();
   void write_outputs(const std::string& status);
-  void write_recording(nlohmann::json& scene);
+  bool write_recording(nlohmann::json& scene);
 
   Scene m_scene;
   std::filesystem::path m_out_dir;
@@ -73,6 +74,7 @@ class LiveSession {
   std::unique_ptr<EnergyWriter> m_energy;
   std::unique_ptr<HandsWriter> m_hands;
   std::unique_ptr<FrameRecorder> m_frames;
+  std::unique_ptr<EventTraceRecorder> m_event_frames;
   std::unique_ptr<LiveHands> m_live_hands;
   std::size_t m_left_out_reported = 0;  ///< LiveHands::left_out() entries printed so far
   std::string m_scene_json;

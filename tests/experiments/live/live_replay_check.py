@@ -1,0 +1,96 @@
+"""The replay folder of a live session (docs/live.md, "Output") in the cases that broke it.
+
+1. A key pressed live on a scene whose hands come from inline `input.events` that go on after
+   it (fig2_hold.json: hand events up to 2.5 s): the key joins the events in time order, and
+   `drapelab run OUT/scene.json` replays the same events. Appended at the end, it made the
+   events' times go backwards and the replay was refused (exit 2).
+2. Live hands that never moved and no key: nothing to record, so no recording.jsonl (drapelab's
+   reader refuses a file without frames), `live.recording` null in summary.json, and the replay
+   scene has no hand input; it replays.
+3. summary.json is written last: a folder without it is not finished (docs/outputs.md).
+4. `output.event_trace_interval` gives live the event_trace/ of `drapelab run` (it was ignored),
+   the same frames as the replay's.
+Usage: live_replay_check.py DRAPELAB SOURCE_DIR WORK_DIR
+"""
+import json
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import numpy
+
+from live_client import LiveRun, free_port, replay_events
+
+
+def key_between_scene_events(drapelab, source, work):
+    out = work / "keys"
+    with LiveRun(drapelab, source / "experiments/scenes/fig2_hold.json", out) as run:
+        run.wait_for(lambda f: f["t"] > 0.1, "the first frames")
+        assert run.post("/key", "r") == (200, "ok\n")
+        run.wait_for(lambda f: f["t"] > 1.0 and f["event_count"] >= 1, "the key's event")
+        code, stdout, stderr = run.stop()
+        assert code == 0, (code, stdout, stderr)
+    scene = json.loads((out / "scene.json").read_text())
+    times = [e["t"] for e in scene["input"]["events"]]
+    assert times == sorted(times) and len(set(times)) == len(times), times
+    assert any(e.get("keys") == ["r"] for e in scene["input"]["events"]), scene["input"]["events"]
+    events = json.loads((out / "summary.json").read_text())["events"]
+    assert events and replay_events(drapelab, out, work / "keys_replay") == events, events
+    print(f"a live key among the scene's events at {times}: replayed {len(events)} events alike")
+
+
+def live_hands_without_input(drapelab, source, work):
+    out = work / "empty"
+    with LiveRun(drapelab, source / "experiments/scenes/fig2_hold.json", out, "--live-hands") as run:
+        run.wait_for(lambda f: f["t"] > 0.3, "a few frames")
+        code, stdout, stderr = run.stop()
+        assert code == 0, (code, stdout, stderr)
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["live"]["recording"] is None, summary["live"]
+    assert not (out / "recording.jsonl").exists()
+    scene = json.loads((out / "scene.json").read_text())
+    assert "recording" not in scene["input"] and "events" not in scene["input"], scene["input"]
+    assert replay_events(drapelab, out, work / "empty_replay") == summary["events"] == []
+    print("live hands that never moved: no recording, the replay runs with no events")
+
+
+def failed_last_write(drapelab, source, work):
+    out = work / "late"
+    with LiveRun(drapelab, source / "experiments/scenes/fig2_hold.json", out) as run:
+        run.wait_for(lambda f: f["t"] > 0.1, "the first frames")
+        (out / "recording.jsonl").mkdir()  # stands for a disk that fills at the end
+        assert run.post("/key", "r") == (200, "ok\n")
+        run.wait_for(lambda f: f["event_count"] >= 1, "the key's event")
+        code, stdout, stderr = run.stop()
+    assert code == 4 and "recording.jsonl" in stderr, (code, stderr)
+    assert not (out / "summary.json").exists(), sorted(p.name for p in out.iterdir())
+    print(f"a failed write of recording.jsonl: exit 4, no summary.json ({stderr.strip()})")
+
+
+def event_trace(drapelab, source, work):
+    out, replay = work / "event_trace", work / "event_trace_replay"
+    trace = ["--set", "output.event_trace_interval=0.001", "--set", "duration=0.3"]
+    subprocess.run([drapelab, "live", source / "experiments/scenes/fig6_map.json", "--port",
+                    str(free_port()), "--out", out, *trace], check=True, timeout=60,
+                   stdout=subprocess.DEVNULL)
+    subprocess.run([drapelab, "run", out / "scene.json", "--out", replay, "-q", *trace],
+                   check=True, timeout=60)
+    for name in ("t", "x", "v", "fixed", "contact"):
+        live = numpy.load(out / "event_trace" / f"{name}.npy")
+        assert numpy.array_equal(live, numpy.load(replay / "event_trace" / f"{name}.npy")), name
+    print(f"event_trace/ in live: {len(live)} frames, as the replay's")
+
+
+def main():
+    drapelab, source, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    key_between_scene_events(drapelab, source, work)
+    live_hands_without_input(drapelab, source, work)
+    failed_last_write(drapelab, source, work)
+    event_trace(drapelab, source, work)
+
+
+if __name__ == "__main__":
+    main()
