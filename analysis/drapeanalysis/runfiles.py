@@ -199,7 +199,7 @@ def read_event_trace(run):
             raise ValueError(f"{folder / (name + '.npy')}: {array.dtype} values, expected "
                              f"{np.dtype(EVENT_TRACE_TYPES[name])}")
         check_finite_array(folder / f"{name}.npy", array)
-    check_increasing(folder / "t.npy", arrays["t"], lambda k: f"index {k}")
+    check_increasing(folder / "t.npy", arrays["t"], lambda k: f"index [{k}]")
     fixed = arrays["fixed"]
     check_flags(folder / "fixed.npy", fixed, lambda k: f"index {list(map(int, np.unravel_index(k, fixed.shape)))}")
     t = arrays["t"].astype(float)

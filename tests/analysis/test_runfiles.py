@@ -246,9 +246,9 @@ class ValueTest(runfolder.RunFolderTest):
     def test_event_trace_values(self):
         folder = self.event_trace()
         self.assertEqual(list(runfiles.read_event_trace(self.run)["t"]), [0.0, 0.001, 0.002])
-        for t, message in (([0.0, 0.002, 0.001], "index 2: t = 0.001 is not after the time before it, t = 0.002 "
+        for t, message in (([0.0, 0.002, 0.001], "index [2]: t = 0.001 is not after the time before it, t = 0.002 "
                                                  "(times must increase)"),
-                           ([0.0, 0.001, 0.001], "index 2: t = 0.001 is not after the time before it, t = 0.001 "
+                           ([0.0, 0.001, 0.001], "index [2]: t = 0.001 is not after the time before it, t = 0.001 "
                                                  "(times must increase)"),
                            ([0.0, np.nan, 0.002], "index [1]: not a finite number (nan)")):
             with self.subTest(t):
