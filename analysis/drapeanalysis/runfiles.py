@@ -1,7 +1,12 @@
 """Readers for the files a run and an experiment write (docs/outputs.md, docs/experiments.md):
 CSV files as pandas DataFrames (one column per CSV column), JSON files as dicts. Every reader
 names the file in its error when it is not a regular file (fileio.open_input), a column is
-missing, a cell is not a number or there are no rows."""
+missing, a cell is not a finite number or there are no rows, and the row and the column when
+times do not increase, a flag is not 0 or 1 or a status is not one drapelab writes.
+
+A run never writes a non-finite number: the loop checks a step for divergence (a non-finite or
+runaway state) before any writer sees it (experiments/run/simulation.cpp, take_step), so a
+diverged run's files end with its last finite step, and inf, like nan, is damage."""
 import json
 import math
 import os
@@ -11,10 +16,13 @@ import numpy as np
 import pandas as pd
 
 from .fileio import input_problem, open_input
+from .values import (JSON_TYPES, RESTART_STATUSES, RESULT_STATUSES, RUN_STATUSES, check_finite_array,
+                     check_flags, check_increasing, check_status, finite_number, json_type, shown)
 
 TRACE_COLUMNS = ("t", "index", "x", "y", "z", "vx", "vy", "vz", "fixed", "contact", "event")
 STATE_COLUMNS = ("index", "row", "col", "x", "y", "z", "vx", "vy", "vz", "fixed")
 HANDS_COLUMNS = ("t", "hand", "available", "x", "y", "z")
+EVENT_TRACE_TYPES = {"t": np.float64, "x": np.float32, "v": np.float32, "fixed": np.uint8, "contact": np.int32}
 
 
 def read_json(path):
@@ -28,7 +36,7 @@ def read_json(path):
 
 def read_csv(path, columns=(), text_columns=(), nan_columns=()):
     """A CSV file as a DataFrame; `columns` must be present, and every column but `text_columns`
-    must hold numbers (`nan_columns` may also hold nan: a quantity not measured). Every line a
+    must hold finite numbers (`nan_columns` may also hold nan: a quantity not measured). Every line a
     run writes ends in a newline: a file that does not was cut, and its last number may be cut
     short yet still parse."""
     with open_input(path, "rb") as f:
@@ -51,12 +59,13 @@ def read_csv(path, columns=(), text_columns=(), nan_columns=()):
         if name in text_columns:
             continue
         numbers = pd.to_numeric(frame[name], errors="coerce")
-        bad = numbers.isna() & frame[name].notna()
+        # to_numeric keeps inf (and 1e999): a number, but not one a run writes.
+        bad = (numbers.isna() & frame[name].notna()) | np.isinf(numbers)
         if name not in nan_columns:
             bad |= frame[name].isna()
         if bad.any():
             row = int(np.argmax(bad.to_numpy()))
-            raise ValueError(f"{path}: row {row + 1}, column {name}: not a number "
+            raise ValueError(f"{path}: row {row + 1}, column {name}: not a finite number "
                              f"({frame[name].iloc[row]!r})")
         frame[name] = numbers.astype(float)
     return frame
@@ -64,9 +73,15 @@ def read_csv(path, columns=(), text_columns=(), nan_columns=()):
 
 def read_restart_error(path):
     """A run's restart_error.csv (docs/outputs.md): the measured columns are nan where a branch
-    failed or the run ended before its horizon."""
+    failed or the run ended before its horizon; a horizon is positive and a status one of
+    RESTART_STATUSES."""
     measured = ("error_rms", "error_max", "reference_motion_rms")
-    return read_csv(path, ("t", "horizon") + measured, ("events", "status"), measured)
+    rows = read_csv(path, ("t", "horizon") + measured, ("events", "status"), measured)
+    for k, (status, horizon) in enumerate(zip(rows["status"], rows["horizon"])):
+        check_status(status, RESTART_STATUSES, path, f"row {k + 1}, column status")
+        if not horizon > 0:
+            raise ValueError(f"{path}: row {k + 1}, column horizon: {horizon:g}, expected a positive time")
+    return rows
 
 
 def read_table(path, columns=()):
@@ -75,8 +90,10 @@ def read_table(path, columns=()):
 
 
 def read_energy(path):
-    """energy.csv: t, kinetic, spring, gravity, collision, total."""
-    return read_csv(path, ("t", "total"))
+    """energy.csv: t, kinetic, spring, gravity, collision, total; t increasing."""
+    energy = read_csv(path, ("t", "total"))
+    check_increasing(path, energy["t"])
+    return energy
 
 
 def read_run_energy(run, summary):
@@ -117,13 +134,26 @@ def read_hands(path):
 
 
 def read_trace(path):
-    """trace.csv as a DataFrame, one row per particle and trace time, in the order written."""
+    """trace.csv as a DataFrame, one row per particle and trace time, in the order written:
+    each frame every particle in index order at one time, the frames' times increasing, the
+    fixed and event flags 0 or 1."""
     frame = read_csv(path)
     if tuple(frame.columns) != TRACE_COLUMNS:
         raise ValueError(f"{path}: columns {','.join(frame.columns)}, expected {','.join(TRACE_COLUMNS)}")
     particles = int(frame["index"].max()) + 1
     if len(frame) % particles:
         raise ValueError(f"{path}: {len(frame)} rows is not a whole number of {particles}-particle frames")
+    index, t = frame["index"].to_numpy(), frame["t"].to_numpy()
+    first = np.repeat(np.arange(0, len(frame), particles), particles)
+    wrong = np.nonzero((index != np.arange(len(frame)) - first) | (t != t[first]))[0]
+    if len(wrong):
+        r = int(wrong[0])
+        raise ValueError(f"{path}: row {r + 1}: particle {index[r]:g} at t = {t[r]:.17g}, expected particle "
+                         f"{r - first[r]} of the frame at t = {t[first[r]]:.17g} (a frame lists every "
+                         "particle in order at one time)")
+    check_increasing(path, t[::particles], lambda k: f"row {k * particles + 1}, column t")
+    for name in ("fixed", "event"):
+        check_flags(path, frame[name], lambda k: f"row {k + 1}, column {name}")
     return frame
 
 
@@ -151,7 +181,7 @@ def read_event_trace(run):
     if not folder.is_dir():
         return None
     arrays = {}
-    for name in ("t", "x", "v", "fixed", "contact"):
+    for name in EVENT_TRACE_TYPES:
         path = folder / f"{name}.npy"
         with open_input(path, "rb") as f:
             try:
@@ -162,6 +192,16 @@ def read_event_trace(run):
     for name in ("x", "v", "fixed", "contact"):
         if len(arrays[name]) != frames:
             raise ValueError(f"{folder / (name + '.npy')}: {len(arrays[name])} frames, t.npy has {frames}")
+    for name, array in arrays.items():
+        # The types the run writes (docs/outputs.md): times in integer milliseconds, say, would
+        # be read as seconds.
+        if array.dtype != EVENT_TRACE_TYPES[name]:
+            raise ValueError(f"{folder / (name + '.npy')}: {array.dtype} values, expected "
+                             f"{np.dtype(EVENT_TRACE_TYPES[name])}")
+        check_finite_array(folder / f"{name}.npy", array)
+    check_increasing(folder / "t.npy", arrays["t"], lambda k: f"index [{k}]")
+    fixed = arrays["fixed"]
+    check_flags(folder / "fixed.npy", fixed, lambda k: f"index {list(map(int, np.unravel_index(k, fixed.shape)))}")
     t = arrays["t"].astype(float)
     step = np.diff(t)
     # A window starts where the spacing is not the interval (the median spacing).
@@ -183,33 +223,13 @@ def positions(frame):
 RESULTS_FIELDS = {"name": (str, None), "question": (str, None), "metrics": (list, str),
                   "parameters": (list, str), "plan_size": (int, None), "columns": (list, str),
                   "runs": (list, dict)}
-JSON_TYPES = {str: "a string", int: "an integer", float: "a number", list: "a list", dict: "an object",
-              bool: "true or false", type(None): "null"}
-
-
-def json_type(value):
-    """The JSON name of a value's type, for messages."""
-    return JSON_TYPES.get(type(value), type(value).__name__)
-
-
-def shown(value, limit=60):
-    """A JSON value as a message quotes it, cut at `limit` characters."""
-    text = json.dumps(value)
-    return text if len(text) <= limit else text[:limit] + "..."
-
-
-def finite_number(value, path, field):
-    """value as a float; a ValueError naming the file and the field when it is not a finite
-    number (null, a string, true, nan)."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ValueError(f"{path}: {field}: expected a finite number, got {shown(value)}")
-    return float(value)
 
 
 def check_results(doc, path):
     """A ValueError naming results.json and the field when the document lacks a field the report
-    reads or holds the wrong type there, or when a run's id is empty, repeated or would name a
-    file outside the report's folder (RUN_ID.mp4, view/RUN_ID.html)."""
+    reads or holds the wrong type there, when a run's id is empty, repeated or would name a
+    file outside the report's folder (RUN_ID.mp4, view/RUN_ID.html), or its status is not one
+    merge writes."""
     if not isinstance(doc, dict):
         raise ValueError(f"{path}: expected a JSON object, got {json_type(doc)}")
     for key, (kind, item) in RESULTS_FIELDS.items():
@@ -231,6 +251,7 @@ def check_results(doc, path):
         if run["id"] in seen:
             raise ValueError(f"{path}: runs[{k}].id: {run['id']!r} repeats an earlier run's id")
         seen.add(run["id"])
+        check_status(run.get("status"), RESULT_STATUSES, path, f"runs[{k}].status")
 
 
 def load_experiment(directory):
@@ -280,12 +301,14 @@ def results_table(directory):
 
 def read_summary(run):
     """A run's summary.json as a dict; a ValueError naming the file and the field when it is not
-    an object, or its events (optional) are not a list of objects each with a type (a string)
-    and a time `t` (a finite number), which every event of docs/outputs.md has."""
+    an object, its status is not one a run writes, or its events (optional) are not a list of
+    objects each with a type (a string) and a time `t` (a finite number), which every event of
+    docs/outputs.md has."""
     path = Path(run) / "summary.json"
     doc = read_json(path)
     if not isinstance(doc, dict):
         raise ValueError(f"{path}: expected a JSON object, got {json_type(doc)}")
+    check_status(doc.get("status"), RUN_STATUSES, path, "status")
     events = doc.get("events", [])
     if not isinstance(events, list):
         raise ValueError(f"{path}: events: expected a list, got {json_type(events)}")

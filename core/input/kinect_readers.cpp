@@ -165,6 +165,10 @@ Recording read_ntu_skeleton(const std::string& file) {
                                 " frames the file announces");
   // As the other readers: a replay without frames would run without hands as if nothing were wrong.
   if (recording.frames.empty()) throw InputError(file, "", "no frames (the frame count is 0)");
+  // Nor would frames without a body: every hand absent, nothing ever held.
+  if (!person)
+    throw InputError(file, "", "no body in any of the " + std::to_string(frame_total) +
+                                   " frames (every body count is 0): no hands to replay");
   return recording;
 }
 

@@ -81,10 +81,12 @@ RecordingFormat detect_recording_format(const std::string& file) {
     if (fields.front().front() == '{') return RecordingFormat::Drapelab;
     if (line.find(',') != std::string::npos) return RecordingFormat::KinectV2Csv;
     if (fields.size() == 1) return RecordingFormat::NtuSkeleton;
-    break;
+    throw lines.error("", "cannot tell the recording format (drapelab JSON Lines, Kinect v2 CSV "
+                          "or NTU .skeleton) from the first line");
   }
-  throw lines.error("", "cannot tell the recording format (drapelab JSON Lines, Kinect v2 CSV "
-                        "or NTU .skeleton) from the first line");
+  // No line to name ("line 0" before): the file says nothing.
+  throw InputError(file, "", lines.number() == 0 ? "empty file: no recording"
+                                                 : "only blank lines: no recording");
 }
 
 Recording read_drapelab_recording(const std::string& file) {
@@ -195,6 +197,10 @@ bool TextLines::next(std::string& line) {
   if (!std::getline(m_in, line)) return false;
   ++m_number;
   if (!line.empty() && line.back() == '\r') line.pop_back();
+  // A byte order mark, which Windows editors put before UTF-8 text, is no part of any of the
+  // formats: left in, it hid a JSON Lines header's '{' and the file was taken for a Kinect CSV.
+  constexpr std::string_view bom = "\xEF\xBB\xBF";
+  if (m_number == 1 && std::string_view(line).substr(0, bom.size()) == bom) line.erase(0, bom.size());
   return true;
 }
 

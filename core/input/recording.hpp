@@ -90,7 +90,8 @@ class TextLines {
  public:
   /// Opens `file`; throws InputError if it cannot be read.
   explicit TextLines(std::string file);
-  /// Reads the next line (without '\n' or a trailing '\r'); false at the end of the file.
+  /// Reads the next line (without '\n' or a trailing '\r', and the first line without a UTF-8
+  /// byte order mark); false at the end of the file.
   bool next(std::string& line);
   /// 1-based number of the line last read.
   int number() const { return m_number; }

@@ -100,20 +100,15 @@ BisectSpec read_bisect(JsonReader in) {
   return b;
 }
 
-// Two scene paths overlap when they are equal or one holds the other (integrator and
-// integrator.dt): applied in turn, the later would replace or change the earlier's value, so
-// which one a run gets would depend on the order of application, not on the definition.
+// Whether `inner` is a path inside `outer` (integrator.dt inside integrator).
 bool holds(const std::string& outer, const std::string& inner) {
   return inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
          inner[outer.size()] == '.';
 }
-bool overlap(const std::string& a, const std::string& b) {
-  return a == b || holds(a, b) || holds(b, a);
-}
 
 // Why `key` may not be given with `other` (given in `where`), or "" when it may.
 std::string clash_of(const std::string& key, const std::string& other, const std::string& where) {
-  if (!overlap(key, other)) return "";
+  if (!paths_overlap(key, other)) return "";
   if (key == other) return where == "sweep" ? "is also swept" : "is also in " + where;
   return "overlaps " + where + "." + other + " (one holds the other)";
 }
@@ -251,6 +246,13 @@ void add_ensemble_defaults(const JsonReader& in, Experiment& e) {
 
 }  // namespace
 
+// Applied in turn, the later of two overlapping paths would replace or change the earlier's
+// value, so which one a run gets would depend on the order of application, not on the
+// definition.
+bool paths_overlap(const std::string& a, const std::string& b) {
+  return a == b || holds(a, b) || holds(b, a);
+}
+
 const std::vector<std::string>& known_metrics() {
   static const std::vector<std::string> names = {"energy_drift", "vibration",   "attach_error",
                                                  "mapping_error", "work_precision", "stable_dt",
@@ -308,7 +310,7 @@ Experiment parse_experiment(const nlohmann::json& source, const std::string& fil
     // its reference particle by particle, over the same time, so nothing but the method and
     // what it writes (outputs never change the steps) may differ.
     for (const auto& [key, value] : e.reference)
-      if (!overlap(key, "integrator") && !overlap(key, "output"))
+      if (!paths_overlap(key, "integrator") && !paths_overlap(key, "output"))
         throw in.error("reference." + key,
                        "a reference changes only the method and its outputs (integrator.* and "
                        "output.* keys), so that it solves the runs' problem");

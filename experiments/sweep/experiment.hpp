@@ -78,6 +78,10 @@ struct Shard {
   std::string tag() const;
 };
 
+/// Whether two dotted scene paths are equal or one holds the other (integrator and
+/// integrator.dt).
+bool paths_overlap(const std::string& a, const std::string& b);
+
 /// The known metric names of an experiment's `metrics` list (computed by analysis/).
 const std::vector<std::string>& known_metrics();
 

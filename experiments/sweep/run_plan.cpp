@@ -107,14 +107,16 @@ void plan_run(const Experiment& e, RunSpec run, std::vector<RunSpec>& plan,
               std::set<std::string>& ids, std::vector<RunSpec>& references) {
   if (!e.reference.empty()) {
     // The reference shares the scene and every non-integrator value, solved with the
-    // reference's method, so that the difference is the integrator's error alone.
+    // reference's method, so that the difference is the integrator's error alone. A run's
+    // `integrator` given whole is the run's method too: the reference inherited all of it (a
+    // table, a tolerance) under its own keys.
     RunSpec ref;
     ref.scene = run.scene;
     ref.scene_path = run.scene_path;
     ref.scene_digest = run.scene_digest;
     ref.is_reference = true;
     for (const auto& p : run.parameters)
-      if (p.first.rfind("integrator.", 0) != 0) ref.parameters.push_back(p);
+      if (!paths_overlap(p.first, "integrator")) ref.parameters.push_back(p);
     ref.parameters.insert(ref.parameters.end(), e.reference.begin(), e.reference.end());
     ref.overrides = e.set;
     ref.overrides.insert(ref.overrides.end(), ref.parameters.begin(), ref.parameters.end());

@@ -1,6 +1,9 @@
 #include "experiments/viewer/csv_table.hpp"
 
+#include <fmt/format.h>
+
 #include <charconv>
+#include <cmath>
 #include <fstream>
 
 #include "core/scene/input_error.hpp"
@@ -33,7 +36,10 @@ bool parse_number(std::string_view text, double& value) {
 
 CsvTable::CsvTable(const std::filesystem::path& file, const std::vector<std::string>& columns,
                    const std::vector<std::string>& text_columns)
-    : m_file(file.string()), m_width(columns.size()), m_text_width(text_columns.size()) {
+    : m_file(file.string()),
+      m_columns(columns),
+      m_width(columns.size()),
+      m_text_width(text_columns.size()) {
   std::ifstream in(file);
   if (!in) throw InputError(m_file, "", "cannot read the file");
   std::string line;
@@ -70,8 +76,27 @@ CsvTable::CsvTable(const std::filesystem::path& file, const std::vector<std::str
       m_values.push_back(value);
     }
     for (const size_t k : text_index) m_text.emplace_back(fields[k]);
+    m_lines.push_back(line_number);
     ++m_rows;
   }
+}
+
+double CsvTable::finite(int r, int c) const {
+  const double value = at(r, c);
+  if (!std::isfinite(value))
+    throw InputError(m_file, line(r),
+                     fmt::format("column '{}' is not a finite number: {}", m_columns[static_cast<size_t>(c)], value));
+  return value;
+}
+
+int CsvTable::integer(int r, int c, int low, int high) const {
+  const double value = at(r, c);
+  // Compared as doubles first: only a value in range may be converted.
+  if (!(value >= low && value <= high && value == std::floor(value)))
+    throw InputError(m_file, line(r),
+                     fmt::format("column '{}' is {}, expected an integer in [{}, {}]",
+                                 m_columns[static_cast<size_t>(c)], value, low, high));
+  return static_cast<int>(value);
 }
 
 }  // namespace drape

@@ -1,7 +1,8 @@
 #pragma once
 // A numeric CSV file with a header line, as a run writes them (docs/outputs.md), read strictly:
 // a missing column, a short row or a field that is not a number is an InputError naming the
-// file and the line.
+// file and the line. A number read is any double, inf and nan too; finite() and integer() are
+// the checked reads for the columns where those are damage.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -19,6 +20,13 @@ class CsvTable {
   int rows() const { return m_rows; }
   /// Value of the c-th requested column in row r.
   double at(int r, int c) const { return m_values[static_cast<size_t>(r) * m_width + c]; }
+  /// at(r, c), an InputError naming the file, the line and the column when it is not finite.
+  double finite(int r, int c) const;
+  /// at(r, c) as an int, an InputError naming the file, the line and the column when it is not
+  /// an integer in [low, high] (a cast of nan or 1e12 to int is undefined behaviour).
+  int integer(int r, int c, int low, int high) const;
+  /// "line N" of row r in the file, for messages.
+  std::string line(int r) const { return "line " + std::to_string(m_lines[static_cast<size_t>(r)]); }
   /// Value of the c-th requested text column in row r.
   const std::string& text(int r, int c) const {
     return m_text[static_cast<size_t>(r) * m_text_width + c];
@@ -27,6 +35,8 @@ class CsvTable {
 
  private:
   std::string m_file;
+  std::vector<std::string> m_columns;
+  std::vector<int> m_lines;  ///< each row's line in the file (blank lines are skipped)
   size_t m_width = 0;
   int m_rows = 0;
   size_t m_text_width = 0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
@@ -25,6 +26,25 @@ int scene_integer(const nlohmann::json& value, const std::string& file, const st
   return value.get<int>();
 }
 
+// A run writes its rows in increasing time (docs/outputs.md): a time at or before the one of the
+// row before was played out of order, or twice, on the page's slider.
+void check_time_increases(const CsvTable& table, int r, double t, double before) {
+  if (!(t > before))
+    throw InputError(table.file(), table.line(r),
+                     fmt::format("column 't': t = {} is not after the time before it, t = {} (times "
+                                 "must increase)", t, before));
+}
+
+// A coordinate of the dress form or a hand, for the page's single precision: a finite double
+// beyond float's range (1e300) would be inf there, as a trace frame's (read_viewer_run).
+float coordinate(const CsvTable& table, int r, int c) {
+  const double value = table.finite(r, c);
+  if (std::abs(value) > std::numeric_limits<float>::max())
+    throw InputError(table.file(), table.line(r),
+                     fmt::format("a coordinate of {} is not finite in single precision", value));
+  return static_cast<float>(value);
+}
+
 // Frames of trace.csv: rows grouped by time, every particle once a frame, in index order.
 std::vector<ViewerFrame> read_trace(const fs::path& file, int particles) {
   const CsvTable table(file, {"t", "index", "x", "y", "z", "fixed", "event"});
@@ -36,7 +56,8 @@ std::vector<ViewerFrame> read_trace(const fs::path& file, int particles) {
   for (size_t f = 0; f < frames.size(); ++f) {
     ViewerFrame& frame = frames[f];
     const int first = static_cast<int>(f) * particles;
-    frame.t = table.at(first, 0);
+    frame.t = table.finite(first, 0);
+    if (f > 0) check_time_increases(table, first, frame.t, frames[f - 1].t);
     frame.positions.resize(3 * static_cast<size_t>(particles));
     for (int i = 0; i < particles; ++i) {
       const int r = first + i;
@@ -46,8 +67,9 @@ std::vector<ViewerFrame> read_trace(const fs::path& file, int particles) {
                              " of the frame at t = " + std::to_string(frame.t));
       for (int k = 0; k < 3; ++k)
         frame.positions[3 * i + k] = static_cast<float>(table.at(r, 2 + k));
-      if (table.at(r, 5) != 0.0) frame.fixed.push_back(i);
-      frame.event = frame.event || table.at(r, 6) != 0.0;
+      if (table.integer(r, 5, 0, 1) != 0) frame.fixed.push_back(i);
+      const bool event = table.integer(r, 6, 0, 1) != 0;  // checked in every row
+      frame.event = frame.event || event;
     }
   }
   return frames;
@@ -75,11 +97,12 @@ ViewerFrame read_state(const fs::path& file, int particles, double t) {
 
 void read_dummy(const fs::path& file, ViewerRun& run) {
   const CsvTable table(file, {"section", "point", "x", "y", "z"});
+  // Sections and points count from 0, and their product is the row count: neither exceeds it.
   for (int r = 0; r < table.rows(); ++r) {
-    run.dummy_sections = std::max(run.dummy_sections, static_cast<int>(table.at(r, 0)) + 1);
-    run.dummy_points = std::max(run.dummy_points, static_cast<int>(table.at(r, 1)) + 1);
+    run.dummy_sections = std::max(run.dummy_sections, table.integer(r, 0, 0, table.rows() - 1) + 1);
+    run.dummy_points = std::max(run.dummy_points, table.integer(r, 1, 0, table.rows() - 1) + 1);
     for (int k = 0; k < 3; ++k)
-      run.dummy_positions.push_back(static_cast<float>(table.at(r, 2 + k)));
+      run.dummy_positions.push_back(coordinate(table, r, 2 + k));
   }
   if (static_cast<long long>(run.dummy_sections) * run.dummy_points != table.rows())
     throw InputError(
@@ -97,25 +120,23 @@ void read_hands(const fs::path& file, ViewerRun& run, int particles) {
       run.hands.push_back(ViewerHand{name, {}, {}, {}, {}, {}});
       hand = run.hands.end() - 1;
     }
-    for (const int c : {5, 6})
-      if (table.at(r, c) < -1 || table.at(r, c) >= particles)
-        throw InputError(table.file(), "line " + std::to_string(r + 2),
-                         "particle index out of range: " +
-                             std::to_string(static_cast<long long>(table.at(r, c))));
-    hand->t.push_back(table.at(r, 0));
-    hand->available.push_back(static_cast<int>(table.at(r, 1)));
-    for (int k = 0; k < 3; ++k) hand->positions.push_back(static_cast<float>(table.at(r, 2 + k)));
-    hand->candidate.push_back(static_cast<int>(table.at(r, 5)));
-    hand->held.push_back(static_cast<int>(table.at(r, 6)));
+    hand->t.push_back(table.finite(r, 0));
+    hand->available.push_back(table.integer(r, 1, 0, 1));
+    for (int k = 0; k < 3; ++k) hand->positions.push_back(coordinate(table, r, 2 + k));
+    // A particle index, -1 for none.
+    hand->candidate.push_back(table.integer(r, 5, -1, particles - 1));
+    hand->held.push_back(table.integer(r, 6, -1, particles - 1));
   }
 }
 
 void read_energy(const fs::path& file, ViewerRun& run) {
   const CsvTable table(file, {"t", "kinetic", "total"});
   for (int r = 0; r < table.rows(); ++r) {
-    run.energy_t.push_back(table.at(r, 0));
-    run.energy_kinetic.push_back(table.at(r, 1));
-    run.energy_total.push_back(table.at(r, 2));
+    const double t = table.finite(r, 0);
+    if (r > 0) check_time_increases(table, r, t, run.energy_t.back());
+    run.energy_t.push_back(t);
+    run.energy_kinetic.push_back(table.finite(r, 1));
+    run.energy_total.push_back(table.finite(r, 2));
   }
 }
 

@@ -33,20 +33,26 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)
     # fig2_hold for 0.5 s: leap-frog and implicit Euler with a trace, leap-frog at a coarser
-    # step without one.
+    # step without one, and leap-frog at a step that diverges within 0.01 s, with a trace and an
+    # event trace: the report takes what a diverged run writes (its values stop at its last
+    # finite step), though it refuses inf and times out of order in a run's files.
     scene = source / "experiments" / "scenes" / "fig2_hold.json"
     (work / "tiny.json").write_text(json.dumps({
         "name": "tiny", "question": "Does the report link the runs in 3-D?", "scenes": [str(scene)],
         "duration": 0.5, "set": {"output.energy_interval": 0.01},
         "cases": [{"integrator.name": "leapfrog", "integrator.dt": 0.0002, "output.trace_interval": 0.05},
                   {"integrator.name": "implicit-euler", "integrator.dt": 0.002, "output.trace_interval": 0.05},
-                  {"integrator.name": "leapfrog", "integrator.dt": 0.0005, "output.trace_interval": 0}]}))
+                  {"integrator.name": "leapfrog", "integrator.dt": 0.0005, "output.trace_interval": 0},
+                  {"integrator.name": "leapfrog", "integrator.dt": 0.003, "output.trace_interval": 0.05,
+                   "output.event_trace_interval": 0.001}]}))
     out = work / "out"
     run([drapelab, "experiment", work / "tiny.json", "--out", out, "-j", "2"])
     run([drapelab, "report", out])
     with open(out / "results.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     page = (out / "report" / "report.html").read_text()
+    if [r["status"] for r in rows].count("diverged") != 1:
+        fail(f"expected one diverged run, got statuses {[r['status'] for r in rows]}")
 
     for key in ("version", "git_commit", "build_type", "sundials_version", "date", "machine.hostname"):
         if not rows[0].get(key):

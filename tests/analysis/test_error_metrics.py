@@ -38,10 +38,10 @@ class MappingErrorTest(runfolder.RunFolderTest):
         objects[:len(final) + len(mapped), 1] = 0.0
         self.write_dummy(run, objects)
         runfolder.write_state(run, final, cols=self.cols)
-        # Trace: start, the hold's event frame (another shape), the map's step and event frames,
-        # a later frame.
+        # Trace: start, the hold's event frame (another shape), a frame before the map, the map's
+        # event frame, a later frame.
         frames = [self.grid(1.0, 1.0), self.grid(1.1, 0.5), self.grid(1.2, 0.4), mapped, self.grid(1.05, 0.2)]
-        runfolder.write_trace(run, [0.0, 0.1, 0.3, 0.3, 0.4], np.stack(frames), event=np.array([0, 1, 0, 1, 0]))
+        runfolder.write_trace(run, [0.0, 0.1, 0.2, 0.3, 0.4], np.stack(frames), event=np.array([0, 1, 0, 1, 0]))
         out = metrics.mapping_error(run, runfiles.read_json(run / "summary.json"))
         self.assertClose(out["mapping_gap_mean_final"], 0.002, rel=1e-9)
         self.assertClose(out["mapping_gap_max_final"], 0.002, rel=1e-9)

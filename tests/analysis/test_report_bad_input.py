@@ -272,5 +272,44 @@ class MalformedDocumentTest(ReportTestCase):
         self.assertNoReportPage()
 
 
+class ValueNoRunWritesTest(ReportTestCase):
+    """inf, times out of order, a flag of 7 and unknown statuses were read (exit 0, the metrics
+    changed or became nan); refused before anything is written, naming the file, the row and
+    the column (docs/analysis.md, Bad input)."""
+
+    def edit_lines(self, name, edit):
+        path = self.run / name
+        lines = path.read_text().splitlines()
+        edit(lines)
+        path.write_text("\n".join(lines) + "\n")
+        return path
+
+    def test_inf_energy(self):
+        path = self.edit_lines("energy.csv", lambda lines: lines.__setitem__(3, lines[3].rsplit(",", 1)[0] + ",inf"))
+        self.report(status=2, message=f"{path}: row 3, column total: not a finite number (inf)")
+        self.assertNothingWritten()
+
+    def test_trace_time_going_back(self):
+        # The second frame (rows 13 to 24 of 12 particles) at t = -1.
+        def edit(lines):
+            for r in range(13, 25):
+                lines[r] = "-1" + lines[r][lines[r].index(","):]
+        path = self.edit_lines("trace.csv", edit)
+        self.report(status=2, message=f"{path}: row 13, column t: t = -1 is not after the time before it, t = 0")
+        self.assertNothingWritten()
+
+    def test_unknown_statuses(self):
+        summary = json.loads((self.run / "summary.json").read_text())
+        (self.run / "summary.json").write_text(json.dumps({**summary, "status": "banana"}))
+        self.report(status=2, message=f"{self.run / 'summary.json'}: status: expected one of ok, diverged, "
+                                      'failed, got "banana"')
+        results = json.loads((self.directory / "results.json").read_text())
+        results["runs"][1]["status"] = "finished"
+        (self.directory / "results.json").write_text(json.dumps(results))
+        self.report(status=2, message=f"{self.directory / 'results.json'}: runs[1].status: expected one of ok, "
+                                      'diverged, failed, error, crashed, got "finished"')
+        self.assertNothingWritten()
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -1,5 +1,6 @@
 """Bad run files: a clear error naming the file, or (for files a run may lack) no metric."""
 import json
+import shutil
 import tempfile
 import unittest
 from pathlib import Path
@@ -149,12 +150,138 @@ class BadInputTest(unittest.TestCase):
         self.assertNamesFile(error, self.run / "state.csv", "2 x 3")
 
 
+class ValueTest(runfolder.RunFolderTest):
+    """Values no run writes (docs/outputs.md): inf, times that do not increase, a flag that is
+    not 0 or 1, an unknown status; a ValueError naming the file, the row and the column (they
+    were read, and the metrics changed or became nan)."""
+
+    def setUp(self):
+        super().setUp()
+        self.run = self.make_run()
+
+    def assertRefused(self, read, path, message):
+        with self.assertRaises(ValueError) as error:
+            read()
+        self.assertEqual(str(error.exception), f"{path}: {message}")
+
+    def test_inf_in_a_csv_file(self):
+        path = self.run / "energy.csv"
+        for cell, shown in (("inf", "inf"), ("-inf", "-inf"), ("1e999", "'1e999'")):
+            with self.subTest(cell):
+                runfolder.write_csv(path, "t,total", [(0.0, 1.0), (0.1, cell)])
+                self.assertRefused(lambda: runfiles.read_energy(path), path,
+                                   f"row 2, column total: not a finite number ({shown})")
+        # A column that may hold nan (not measured) may not hold inf.
+        path = self.run / "restart_error.csv"
+        header = "t,events,horizon,status,error_rms,error_max,reference_motion_rms"
+        runfolder.write_csv(path, header, [(0.0, "start", 0.01, "reference_failed", "nan", "nan", "nan")])
+        self.assertEqual(len(runfiles.read_restart_error(path)), 1)
+        runfolder.write_csv(path, header, [(0.0, "start", 0.01, "ok", "inf", 0.0, 0.0)])
+        self.assertRefused(lambda: runfiles.read_restart_error(path), path,
+                           "row 1, column error_rms: not a finite number (inf)")
+
+    def test_energy_times_that_do_not_increase(self):
+        path = self.run / "energy.csv"
+        for t, message in (([0.0, 0.1, 0.1, 0.2], "row 3, column t: t = 0.10000000000000001 is not after the time "
+                                                  "before it, t = 0.10000000000000001 (times must increase)"),
+                           ([0.0, 0.1, -3.0], "row 3, column t: t = -3 is not after the time before it, "
+                                              "t = 0.10000000000000001 (times must increase)")):
+            with self.subTest(t):
+                runfolder.write_energy(self.run, t, [-1.0] * len(t))
+                self.assertRefused(lambda: runfiles.read_energy(path), path, message)
+
+    def trace(self, t=(0.0, 0.1, 0.2), **columns):
+        """A trace of two particles at times t."""
+        x = np.zeros((len(t), 2, 3))
+        runfolder.write_trace(self.run, t, x, **columns)
+        return self.run / "trace.csv"
+
+    def test_trace_times_that_do_not_increase(self):
+        path = self.trace()
+        self.assertEqual(list(runfiles.trace_frames(runfiles.read_trace(path))["t"]), [0.0, 0.1, 0.2])
+        path = self.trace([0.0, 0.1, 0.1])
+        self.assertRefused(lambda: runfiles.read_trace(path), path,
+                           "row 5, column t: t = 0.10000000000000001 is not after the time before it, "
+                           "t = 0.10000000000000001 (times must increase)")
+        path = self.trace([0.0, -1.0, 0.2])
+        self.assertRefused(lambda: runfiles.read_trace(path), path,
+                           "row 3, column t: t = -1 is not after the time before it, t = 0 (times must increase)")
+        # A frame whose rows disagree on the time, or lists its particles out of order.
+        text = path.read_text().splitlines()
+        text[2] = "0.5" + text[2][1:]
+        path.write_text("\n".join(text) + "\n")
+        self.assertRefused(lambda: runfiles.read_trace(path), path,
+                           "row 2: particle 1 at t = 0.5, expected particle 1 of the frame at t = 0 "
+                           "(a frame lists every particle in order at one time)")
+
+    def test_trace_flags_other_than_0_or_1(self):
+        fixed = np.zeros((3, 2), int)
+        fixed[1, 1] = 7
+        path = self.trace(fixed=fixed)
+        self.assertRefused(lambda: runfiles.read_trace(path), path, "row 4, column fixed: 7, expected 0 or 1")
+        path = self.trace(event=np.array([1, 0, 2]))
+        self.assertRefused(lambda: runfiles.read_trace(path), path, "row 5, column event: 2, expected 0 or 1")
+
+    def test_restart_error_status_and_horizon(self):
+        path = self.run / "restart_error.csv"
+        header = "t,events,horizon,status,error_rms,error_max,reference_motion_rms"
+        ok = (0.0, "start", 0.01, "ok", 1e-6, 2e-6, 1e-3)
+        for status in ("ok", "reference_diverged", "reference_failed", "diverged", "failed"):
+            runfolder.write_csv(path, header, [ok, (0.1, "hold", 0.01, status, "nan", "nan", "nan")])
+            self.assertEqual(list(runfiles.read_restart_error(path)["status"]), ["ok", status])
+        runfolder.write_csv(path, header, [ok, (0.1, "hold", 0.01, "banana", "nan", "nan", "nan")])
+        self.assertRefused(lambda: runfiles.read_restart_error(path), path,
+                           "row 2, column status: expected one of ok, reference_diverged, reference_failed, "
+                           'diverged, failed, got "banana"')
+        runfolder.write_csv(path, header, [ok, (0.1, "hold", -0.01, "ok", 0.0, 0.0, 0.0)])
+        self.assertRefused(lambda: runfiles.read_restart_error(path), path,
+                           "row 2, column horizon: -0.01, expected a positive time")
+
+    def event_trace(self, t=(0.0, 0.001, 0.002), x=None):
+        """event_trace/ of two particles at rest; its folder."""
+        x = np.zeros((len(t), 2, 3)) if x is None else x
+        runfolder.write_event_trace(self.run, t, x)
+        return self.run / "event_trace"
+
+    def test_event_trace_values(self):
+        folder = self.event_trace()
+        self.assertEqual(list(runfiles.read_event_trace(self.run)["t"]), [0.0, 0.001, 0.002])
+        for t, message in (([0.0, 0.002, 0.001], "index [2]: t = 0.001 is not after the time before it, t = 0.002 "
+                                                 "(times must increase)"),
+                           ([0.0, 0.001, 0.001], "index [2]: t = 0.001 is not after the time before it, t = 0.001 "
+                                                 "(times must increase)"),
+                           ([0.0, np.nan, 0.002], "index [1]: not a finite number (nan)")):
+            with self.subTest(t):
+                shutil.rmtree(folder)
+                self.event_trace(t)
+                self.assertRefused(lambda: runfiles.read_event_trace(self.run), folder / "t.npy", message)
+        shutil.rmtree(folder)
+        x = np.zeros((3, 2, 3))
+        x[2, 1, 0] = np.inf
+        self.event_trace(x=x)
+        self.assertRefused(lambda: runfiles.read_event_trace(self.run), folder / "x.npy",
+                           "index [2, 1, 0]: not a finite number (inf)")
+        shutil.rmtree(folder)
+        self.event_trace()
+        np.save(folder / "fixed.npy", np.array([[0, 1], [1, 7], [0, 0]], np.uint8))
+        self.assertRefused(lambda: runfiles.read_event_trace(self.run), folder / "fixed.npy",
+                           "index [1, 1]: 7, expected 0 or 1")
+        np.save(folder / "fixed.npy", np.zeros((3, 2), np.uint8))
+        np.save(folder / "v.npy", np.full((3, 2, 3), "x"))
+        self.assertRefused(lambda: runfiles.read_event_trace(self.run), folder / "v.npy",
+                           "<U1 values, expected float32")
+        np.save(folder / "v.npy", np.zeros((3, 2, 3), np.float32))
+        np.save(folder / "t.npy", np.array([0, 1, 2], np.int64))  # milliseconds, say
+        self.assertRefused(lambda: runfiles.read_event_trace(self.run), folder / "t.npy",
+                           "int64 values, expected float64")
+
+
 class DocumentTest(runfolder.RunFolderTest):
     """results.json and summary.json without a field the analysis reads, or with a value of the
     wrong type there: a ValueError naming the file and the field (was a KeyError or TypeError)."""
 
     RESULTS = {"name": "n", "question": "q", "metrics": [], "parameters": ["integrator.dt"], "plan_size": 1,
-               "columns": ["id", "run_dir"], "runs": [{"id": "a", "run_dir": "runs/a"}]}
+               "columns": ["id", "run_dir"], "runs": [{"id": "a", "run_dir": "runs/a", "status": "ok"}]}
 
     def assertRefused(self, name, doc, message, read):
         (self.directory / name).write_text(json.dumps(doc))
@@ -171,28 +298,40 @@ class DocumentTest(runfolder.RunFolderTest):
                 ({**self.RESULTS, "columns": ["id", 3]}, "columns: expected a list of strings, got 3"),
                 ({**self.RESULTS, "plan_size": True}, "plan_size: expected an integer, got true"),
                 ({**self.RESULTS, "runs": [1]}, "runs: expected a list of objects, got 1"),
-                ({**self.RESULTS, "runs": [{"run_dir": "runs/a"}]}, "runs[0].id: expected a non-empty string, got null"),
-                ({**self.RESULTS, "runs": [{"id": "a", "run_dir": ""}]}, 'runs[0].run_dir: expected a non-empty string, got ""'),
-                ({**self.RESULTS, "runs": [{"id": "../a", "run_dir": "runs/a"}]},
+                ({**self.RESULTS, "runs": [{"run_dir": "runs/a", "status": "ok"}]}, "runs[0].id: expected a non-empty string, got null"),
+                ({**self.RESULTS, "runs": [{"id": "a", "run_dir": "", "status": "ok"}]}, 'runs[0].run_dir: expected a non-empty string, got ""'),
+                ({**self.RESULTS, "runs": [{"id": "../a", "run_dir": "runs/a", "status": "ok"}]},
                  "runs[0].id: '../a' is not a file name (it names the run's animation and viewer page)"),
-                ({**self.RESULTS, "runs": runs + runs}, "runs[1].id: 'a' repeats an earlier run's id")):
+                ({**self.RESULTS, "runs": runs + runs}, "runs[1].id: 'a' repeats an earlier run's id"),
+                ({**self.RESULTS, "runs": [{"id": "a", "run_dir": "runs/a", "status": "banana"}]},
+                 'runs[0].status: expected one of ok, diverged, failed, error, crashed, got "banana"'),
+                ({**self.RESULTS, "runs": [{"id": "a", "run_dir": "runs/a"}]},
+                 "runs[0].status: expected one of ok, diverged, failed, error, crashed, got null")):
             with self.subTest(message):
                 self.assertRefused("results.json", doc, message, runfiles.load_experiment)
         (self.directory / "results.json").write_text(json.dumps(self.RESULTS))
         self.assertEqual(runfiles.load_experiment(self.directory), self.RESULTS)
 
     def test_summary_json(self):
+        ok = {"status": "ok"}
         for doc, message in (
                 ("ok", 'expected a JSON object, got a string'),
-                ({"events": {}}, "events: expected a list, got an object"),
-                ({"events": [[]]}, "events[0]: expected an object, got a list"),
-                ({"events": [{"t": 0.1}]}, "events[0].type: expected a string, got null"),
-                ({"events": [{"t": 0.1, "type": "hold"}, {"t": "0.2", "type": "release"}]},
+                ({"status": "banana"}, 'status: expected one of ok, diverged, failed, got "banana"'),
+                ({"events": []}, "status: expected one of ok, diverged, failed, got null"),
+                # error and crashed are results.json's, for runs that wrote no summary.
+                ({"status": "error"}, 'status: expected one of ok, diverged, failed, got "error"'),
+                (ok | {"events": {}}, "events: expected a list, got an object"),
+                (ok | {"events": [[]]}, "events[0]: expected an object, got a list"),
+                (ok | {"events": [{"t": 0.1}]}, "events[0].type: expected a string, got null"),
+                (ok | {"events": [{"t": 0.1, "type": "hold"}, {"t": "0.2", "type": "release"}]},
                  'events[1].t: expected a finite number, got "0.2"')):
             with self.subTest(message):
                 self.assertRefused("summary.json", doc, message, runfiles.read_summary)
+        for status in ("ok", "diverged", "failed"):
+            (self.directory / "summary.json").write_text(json.dumps({"status": status}))
+            self.assertEqual(runfiles.read_summary(self.directory)["status"], status)
         # NaN is not JSON, but Python's json reads it.
-        (self.directory / "summary.json").write_text('{"events": [{"t": NaN, "type": "hold"}]}')
+        (self.directory / "summary.json").write_text('{"status": "ok", "events": [{"t": NaN, "type": "hold"}]}')
         with self.assertRaises(ValueError) as error:
             runfiles.read_summary(self.directory)
         self.assertIn("events[0].t: expected a finite number, got NaN", str(error.exception))

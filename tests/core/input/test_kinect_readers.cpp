@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "tests/support/input_test_files.hpp"
+#include "tests/support/test_support.hpp"
 
 namespace drape {
 namespace {
@@ -234,6 +235,10 @@ TEST(NtuSkeleton, BadInputNamesFileAndLine) {
       {"count.skeleton", "line 1: the frame count"});
   expect_input_error([&] { read_ntu_skeleton(write_file(dir, "none.skeleton", "0\n")); },
                      {"none.skeleton", "no frames"});
+  // Frames, but no body in any: it converted to frames without hands (exit 0).
+  const auto bodiless = write_file(dir, "bodiless.skeleton", "3\n0\n0\n0\n");
+  EXPECT_EQ(testing::input_error_message([&] { read_ntu_skeleton(bodiless); }),
+            bodiless + ": no body in any of the 3 frames (every body count is 0): no hands to replay");
 }
 
 }  // namespace

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include "core/input/kinect_readers.hpp"
 #include "tests/support/input_test_files.hpp"
+#include "tests/support/test_support.hpp"
 
 namespace drape {
 namespace {
@@ -165,6 +168,27 @@ TEST(Recording, FormatDetectionRejectsUnknownContent) {
   expect_input_error(
       [&] { detect_recording_format(write_file(dir, "what.txt", "\nhello world\n")); },
       {"what.txt", "line 2", "format"});
+  // An empty file has no line to name (it was reported at "line 0").
+  for (const auto& [name, text, message] :
+       {std::array<std::string, 3>{"empty.jsonl", "", "empty file: no recording"},
+        std::array<std::string, 3>{"blank.jsonl", "\n  \n", "only blank lines: no recording"}}) {
+    const auto file = write_file(dir, name, text);
+    EXPECT_EQ(testing::input_error_message([&] { read_recording(file); }), file + ": " + message);
+  }
+}
+
+// A byte order mark (Windows editors write one) hid the header's '{': the file was taken for a
+// Kinect CSV because the header holds a comma. Every format reads past it.
+TEST(Recording, AByteOrderMarkIsNotPartOfTheFirstLine) {
+  const auto dir = test_dir();
+  const std::string bom = "\xEF\xBB\xBF";
+  const std::string frames = "{\"t\": 0, \"left\": [0, 0, 0]}\n{\"t\": 0.5, \"right\": [1, 2, 3]}\n";
+  const auto plain = write_file(dir, "plain.jsonl", header + frames);
+  const auto marked = write_file(dir, "bom.jsonl", bom + header + frames);
+  EXPECT_EQ(detect_recording_format(marked), RecordingFormat::Drapelab);
+  EXPECT_EQ(read_recording(marked).frames, read_recording(plain).frames);
+  const auto ntu = write_file(dir, "bom.skeleton", bom + "0\n");
+  EXPECT_EQ(detect_recording_format(ntu), RecordingFormat::NtuSkeleton);
 }
 
 TEST(TextHelpers, SplitAndParse) {

@@ -154,6 +154,33 @@ TEST(ExperimentPlan, RestartErrorGivesEveryRunItsReferencesIntegrator) {
   EXPECT_EQ(error_field(source, dir), "restart_error.every");
 }
 
+// A case that gives `integrator` whole: the reference inherited the object (its table, say,
+// under the reference's own name and step), and a clash of the two was the case's error.
+TEST(ExperimentPlan, AReferenceTakesNoIntegratorValueOfTheRunGivenWhole) {
+  const fs::path dir = temp_dir("reference_whole_integrator");
+  write_scene(dir);
+  json source = json::parse(R"({
+    "name": "whole", "question": "q", "scenes": ["cloth.json"],
+    "cases": [{"integrator": {"name": "arkode-dirk", "dt": 0.001, "table": "ARKODE_SDIRK_2_1_2"}},
+              {"integrator": {"name": "arkode-erk", "dt": 0.001, "adaptive": true, "rtol": 1e-4}}],
+    "reference": {"integrator.dt": 0.0001},
+    "restart_error": {"horizons": [0.02]}})");
+  const auto plan = drape::expand_runs(parse(source, dir));
+  ASSERT_EQ(plan.size(), 2u + 1u);  // both cases share one reference
+  for (const auto& run : plan) {
+    if (run.is_reference) {
+      EXPECT_EQ(run.parameters, (std::vector<drape::Override>{{"integrator.dt", 0.0001}}));
+      continue;
+    }
+    EXPECT_EQ(run.reference, plan.back().id);
+    const auto restart = std::find_if(run.overrides.begin(), run.overrides.end(),
+                                      [](const auto& o) { return o.first == "restart_error"; });
+    ASSERT_NE(restart, run.overrides.end()) << run.id;
+    // The scene's method at the reference's step: no table, no tolerance of the case.
+    EXPECT_EQ(restart->second["reference"], json::parse(R"({"name": "leapfrog", "dt": 0.0001})"));
+  }
+}
+
 TEST(ExperimentPlan, ShardsPartitionThePlanExactlyOnce) {
   for (int n = 1; n <= 7; ++n) {
     std::vector<int> seen(20, 0);

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <array>
+
 #include "tests/support/test_support.hpp"
 #include "experiments/viewer/viewer_run.hpp"
 #include "viewer_test_files.hpp"
@@ -57,7 +59,48 @@ TEST(ViewerRun, NotARunOrMalformedNamesFolderAndFile) {
   testing::write_text(bad_hands / "hands.csv",
                       "t,hand,available,x,y,z,candidate,distance,held\n0,right,1,0,0,0,7,0,-1\n");
   EXPECT_EQ(input_error_message([&] { read_viewer_run(bad_hands); }),
-            (bad_hands / "hands.csv").string() + ": line 2: particle index out of range: 7");
+            (bad_hands / "hands.csv").string() +
+                ": line 2: column 'candidate' is 7, expected an integer in [-1, 1]");
+}
+
+// Values no run writes: times out of order, inf, and integers that are not (nan or 1e12 went
+// through static_cast<int>, undefined behaviour), each named by file, line and column.
+TEST(ViewerRun, ValuesNoRunWritesAreNamed) {
+  const auto dir = testing::tiny_run("values");
+  const std::string trace = "t,index,x,y,z,vx,vy,vz,fixed,contact,event\n";
+  const std::string energy = "t,kinetic,spring,gravity,collision,total\n0,0,0,1,0,1\n";
+  const std::string dummy = "index,section,point,x,y,z,nx,ny,nz\n";
+  const std::string hands = "t,hand,available,x,y,z,candidate,distance,held\n";
+  // file, its text, the message after "DIR/file: "
+  const std::vector<std::array<std::string, 3>> cases = {
+      {"trace.csv", trace + "0.05,0,0,1,0,0,0,0,1,-1,0\n0.05,1,0.02,1,0,0,0,0,0,-1,0\n" +
+                        "0,0,0,1,0,0,0,0,1,-1,1\n0,1,0.02,0.99,0.01,0,0,0,1,-1,1\n",
+       "line 4: column 't': t = 0 is not after the time before it, t = 0.05 (times must increase)"},
+      {"trace.csv", trace + "0,0,0,1,0,0,0,0,7,-1,0\n0,1,0.02,1,0,0,0,0,0,-1,0\n",
+       "line 2: column 'fixed' is 7, expected an integer in [0, 1]"},
+      // The event flag of every row, not only until one row of the frame has it.
+      {"trace.csv", trace + "0,0,0,1,0,0,0,0,1,-1,1\n0,1,0.02,1,0,0,0,0,0,-1,nan\n",
+       "line 3: column 'event' is nan, expected an integer in [0, 1]"},
+      {"energy.csv", energy + "0.05,inf,0,0.9,0,1.4\n", "line 3: column 'kinetic' is not a finite number: inf"},
+      {"energy.csv", energy + "0,0.5,0,0.9,0,1.4\n",
+       "line 3: column 't': t = 0 is not after the time before it, t = 0 (times must increase)"},
+      {"dummy.csv", dummy + "0,0,0,0,1,0,0,0,1\n1,1e12,0,0,1,0,0,0,1\n",
+       "line 3: column 'section' is 1000000000000, expected an integer in [0, 1]"},
+      {"dummy.csv", dummy + "0,nan,0,0,1,0,0,0,1\n", "line 2: column 'section' is nan, expected an integer in [0, 0]"},
+      {"dummy.csv", dummy + "0,0,0,inf,1,0,0,0,1\n", "line 2: column 'x' is not a finite number: inf"},
+      {"dummy.csv", dummy + "0,0,0,0,1e300,0,0,0,1\n",
+       "line 2: a coordinate of 1e+300 is not finite in single precision"},
+      {"hands.csv", hands + "0,right,1,0,0,0,1,0,nan\n", "line 2: column 'held' is nan, expected an integer in [-1, 1]"},
+      {"hands.csv", hands + "0,right,nan,0,0,0,1,0,-1\n",
+       "line 2: column 'available' is nan, expected an integer in [0, 1]"}};
+  for (const auto& [name, text, message] : cases) {
+    testing::tiny_run("values");  // the other files as they were
+    testing::write_text(dir / name, text);
+    EXPECT_EQ(input_error_message([&] { read_viewer_run(dir); }), (dir / name).string() + ": " + message);
+  }
+  testing::tiny_run("values");
+  testing::write_text(dir / "hands.csv", hands + "0,right,1,0,0,0,1,0,-1\n");
+  EXPECT_EQ(read_viewer_run(dir).hands.at(0).candidate, std::vector<int>({1}));
 }
 
 // The summary fields the page shows are checked, as are the frames before a diverged run's
