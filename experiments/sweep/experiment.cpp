@@ -239,7 +239,7 @@ void add_ensemble_defaults(const JsonReader& in, Experiment& e) {
     e.set.emplace_back(key, 1e-3);
   }
   bool seeded = names(e.set, repeat_parameter);
-  for (const auto& [key, values] : e.sweep) seeded = seeded || key == repeat_parameter;
+  for (const auto& [swept, values] : e.sweep) seeded = seeded || swept == repeat_parameter;
   for (const auto& c : e.cases) seeded = seeded || names(c, repeat_parameter);
   if (seeded) throw in.error("repeats", "the repeats set perturbation.seed: do not set it too");
 }
