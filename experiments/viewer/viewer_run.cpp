@@ -120,7 +120,9 @@ void read_hands(const fs::path& file, ViewerRun& run, int particles) {
       run.hands.push_back(ViewerHand{name, {}, {}, {}, {}, {}});
       hand = run.hands.end() - 1;
     }
-    hand->t.push_back(table.finite(r, 0));
+    const double t = table.finite(r, 0);
+    if (!hand->t.empty()) check_time_increases(table, r, t, hand->t.back());
+    hand->t.push_back(t);
     hand->available.push_back(table.integer(r, 1, 0, 1));
     for (int k = 0; k < 3; ++k) hand->positions.push_back(coordinate(table, r, 2 + k));
     // A particle index, -1 for none.

@@ -92,7 +92,11 @@ TEST(ViewerRun, ValuesNoRunWritesAreNamed) {
        "line 2: a coordinate of 1e+300 is not finite in single precision"},
       {"hands.csv", hands + "0,right,1,0,0,0,1,0,nan\n", "line 2: column 'held' is nan, expected an integer in [-1, 1]"},
       {"hands.csv", hands + "0,right,nan,0,0,0,1,0,-1\n",
-       "line 2: column 'available' is nan, expected an integer in [0, 1]"}};
+       "line 2: column 'available' is nan, expected an integer in [0, 1]"},
+      // Each hand's own times (the two hands share each time).
+      {"hands.csv", hands + "0.1,left,0,0,0,0,-1,0,-1\n0.1,right,0,0,0,0,-1,0,-1\n" +
+                        "0.05,left,0,0,0,0,-1,0,-1\n",
+       "line 4: column 't': t = 0.05 is not after the time before it, t = 0.1 (times must increase)"}};
   for (const auto& [name, text, message] : cases) {
     testing::tiny_run("values");  // the other files as they were
     testing::write_text(dir / name, text);
