@@ -58,10 +58,14 @@ double LiveHands::hand_limit(Hand hand, double next_sample) const {
 
 void LiveHands::sample(double now, double wanted, HandTrack& track) {
   constexpr double infinity = std::numeric_limits<double>::infinity();
+  // Frames at least a spacing apart: closer ones give the curve tangents that throw it far out
+  // (a frame 4e-17 s after the last, the rounding of now + lead, was left out on every turn and
+  // froze the run).
+  const double spacing = std::max(m_margin, lead / 100);
   HandFrame frame;
   frame.t = now + lead;
-  if (!m_frames.empty() && frame.t <= m_frames.back().t) {
-    // The last frame is still ahead of now + lead: a run that cannot keep up, or one whose step
+  if (!m_frames.empty() && frame.t < m_frames.back().t + spacing) {
+    // The last frame is less than a spacing before now + lead: a run that cannot keep up, or one whose step
     // (the margin) is longer than the lead. If the track lets the loop go where it wants, no
     // frame: the latest hands wait for a later turn, so that frames never run ahead of the
     // simulation by more than lead plus a spacing (a frame a spacing ahead on every 1/30 s turn
@@ -69,7 +73,7 @@ void LiveHands::sample(double now, double wanted, HandTrack& track) {
     // (limit() = the frame before the last, minus the margin), a frame a spacing after the last
     // moves the limit on; without it a run at the limit would stop for good.
     // The track is rebuilt either way: it takes the keys added since the last turn.
-    frame.t = m_limit >= wanted ? -infinity : m_frames.back().t + std::max(m_margin, lead / 100);
+    frame.t = m_limit >= wanted ? -infinity : m_frames.back().t + spacing;
   }
   std::optional<HandSample> latest[2];
   {
