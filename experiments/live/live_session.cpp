@@ -264,7 +264,12 @@ std::string LiveSession::run() {
                    left_out[m_left_out_reported]);
       target = std::min(target, m_live_hands->limit());
     }
-    running = simulation.advance(target);
+    // Within the turn's wall time: a slow step rate (a large cloth, an adaptive method taking
+    // small steps) still publishes, takes keys and stops on SIGINT every turn or so; it kept
+    // Ctrl-C waiting for minutes while it stepped through its 1/30 s of simulated time.
+    const auto turn_end = next_frame + std::chrono::duration_cast<clock::duration>(
+                                           std::chrono::duration<double>(frame_interval));
+    running = simulation.advance(target, [&] { return !m_stop && clock::now() < turn_end; });
     const double sim_time = simulation.time();
     const double wall_after = std::chrono::duration<double>(clock::now() - start).count();
     publish(wall_after, sim_time + behind_tolerance < wall_after && !simulation.at_end());

@@ -37,7 +37,7 @@ void Simulation::add_observer(SimulationObserver& observer) {
   m_keep_step_ends = m_keep_step_ends || observer.interpolates();
 }
 
-bool Simulation::advance(double t_until) {
+bool Simulation::advance(double t_until, const std::function<bool()>& keep_going) {
   const auto wall_start = std::chrono::steady_clock::now();
   const double observed_before = m_observer_seconds;
   if (!m_started) {
@@ -46,7 +46,7 @@ bool Simulation::advance(double t_until) {
   }
   const double eps = end_tolerance(m_settings.duration);
   const double target = std::min(t_until, m_settings.duration);
-  while (!m_status.ended() && m_t < target - eps) take_step();
+  while (!m_status.ended() && m_t < target - eps && (!keep_going || keep_going())) take_step();
   if (!m_status.ended() && at_end()) {
     m_manipulator.ignore_keys_after(m_t);
     end("ok", "");

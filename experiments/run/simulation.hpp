@@ -5,6 +5,7 @@
 // that no motion of the scene could reach. `drapelab run`, the experiments, the live mode and
 // the tests all step through it. Observers (the writers) see every step and never change one.
 #include <Eigen/Core>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -69,8 +70,10 @@ class Simulation {
   /// Watches every later step; call before the first advance().
   void add_observer(SimulationObserver& observer);
   /// Steps until simulated time `t_until` (at most the duration) or until the run ends, landing
-  /// only on key times and the end. Returns false once the run has ended.
-  bool advance(double t_until);
+  /// only on key times and the end, or until `keep_going` (asked before each step, when given)
+  /// says no. The steps do not depend on where an advance stops, so pausing changes nothing.
+  /// Returns false once the run has ended.
+  bool advance(double t_until, const std::function<bool()>& keep_going = nullptr);
   /// Runs to the end of the scene and returns how it ended.
   const RunStatus& run();
   /// Continues from `other`, a simulation of the same scene: its time, state, fixed particles

@@ -17,7 +17,7 @@ import time
 import urllib.error
 import urllib.request
 
-from live_client import free_port
+from live_client import LiveRun, free_port
 
 
 def main():
@@ -137,6 +137,21 @@ def main():
         early.send_signal(signal.SIGINT)
         assert early.wait(timeout=30) == 0, (k, early.returncode)
         assert json.loads((work / f"early{k}" / "summary.json").read_text())["status"] == "stopped"
+    # a slow step rate (30 x 30, adaptive DIRK at the cloth's stiffness) still publishes frames
+    # and stops on Ctrl-C within a turn or so: it stepped through a whole 1/30 s of simulated
+    # time before looking at either, and Ctrl-C waited for minutes
+    slow = LiveRun(drapelab, scene, work / "slow", "--set", "duration=60", "--set",
+                   "integrator.name=arkode-dirk", "--set", "integrator.adaptive=true", "--set",
+                   "integrator.dt=1e-3", "--set", "cloth.rows=30", "--set", "cloth.cols=30")
+    with slow:
+        slow.wait_for(lambda f: True, "a first frame")
+        time.sleep(2)
+        published = len(slow.frames)
+        asked = time.monotonic()
+        code, _, _ = slow.stop()
+        took = time.monotonic() - asked
+    assert code == 0 and took < 10 and published >= 10, (code, took, published)
+    print(f"slow run: {published} frames in 2 s, stopped {took:.1f} s after Ctrl-C")
     print(f"live check: {len(frames)} frames, events {live_events}")
 
 
