@@ -185,6 +185,14 @@ DummySections make_dummy_sections(const nlohmann::json& spec, const std::string&
   return sections;
 }
 
+void make_dummy_paths_absolute(nlohmann::json& spec, const std::filesystem::path& base_dir) {
+  if (!spec.is_object()) return;
+  const SourceContext context{base_dir};
+  for (const auto& [key, reader] : kSources)
+    if (reader != read_builtin && spec.contains(key) && spec[key].is_string())
+      spec[key] = std::filesystem::absolute(context.resolve(spec[key].get<std::string>())).string();
+}
+
 Dummy make_dummy(const nlohmann::json& spec, const std::string& file, const std::string& path,
                  const std::filesystem::path& base_dir) {
   return Dummy(make_dummy_sections(spec, file, path, base_dir));

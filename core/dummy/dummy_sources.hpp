@@ -42,4 +42,8 @@ DummySections resample_sections(const DummySections& profile, int sections, int 
 /// Scales heights, centres and radii about the origin, then translates by offset.
 void place_sections(DummySections& sections, double scale, const Vec3& offset);
 
+/// Rewrites the file names of a dummy spec (`file`, `mesh`) that are relative to `base_dir` as
+/// absolute paths, for a copy of the scene written elsewhere (a live run's replay scene).
+void make_dummy_paths_absolute(nlohmann::json& spec, const std::filesystem::path& base_dir);
+
 }  // namespace drape

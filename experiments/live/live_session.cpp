@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "core/dummy/dummy_sources.hpp"
 #include "core/input/input_config.hpp"
 #include "core/scene/input_error.hpp"
 #include "experiments/live/live_hands.hpp"
@@ -291,6 +292,9 @@ void LiveSession::write_outputs(const std::string& status) {
   if (status != "diverged" && status != "failed")
     write_state_csv(m_out_dir / "state.csv", m_run->system(), simulation.state());
   nlohmann::json scene = m_scene.source;
+  // The replay scene lives in DIR: file names relative to the live scene's folder are made
+  // absolute (a relative dummy.mesh was not found by the replay).
+  if (scene.contains("dummy")) make_dummy_paths_absolute(scene["dummy"], m_scene.base_dir);
   const bool recorded = write_recording(scene);
   // The replay scene: the live scene, its keys inline, ending where the live run stopped.
   scene["duration"] = simulation.time();

@@ -10,6 +10,8 @@
 3. summary.json is written last: a folder without it is not finished (docs/outputs.md).
 4. `output.event_trace_interval` gives live the event_trace/ of `drapelab run` (it was ignored),
    the same frames as the replay's.
+5. A dummy mesh named relative to the live scene's folder is found by the replay scene, which
+   lives in OUT (the relative name was copied as it was).
 Usage: live_replay_check.py DRAPELAB SOURCE_DIR WORK_DIR
 """
 import json
@@ -82,6 +84,24 @@ def event_trace(drapelab, source, work):
     print(f"event_trace/ in live: {len(live)} frames, as the replay's")
 
 
+def relative_mesh(drapelab, source, work):
+    folder = work / "scene_folder"
+    folder.mkdir()
+    shutil.copy(source / "core/dummy/data/dress-form/mh_default_female_body_cm.obj",
+                folder / "body.obj")
+    scene = json.loads((source / "experiments/scenes/fig6_map.json").read_text())
+    scene["dummy"] = {"mesh": "body.obj", "unit": 0.01}
+    (folder / "scene.json").write_text(json.dumps(scene))
+    out = work / "relative_mesh"
+    subprocess.run([drapelab, "live", folder / "scene.json", "--port", str(free_port()), "--out",
+                    out, "--set", "duration=0.2"], check=True, timeout=60, stdout=subprocess.DEVNULL)
+    replayed = json.loads((out / "scene.json").read_text())["dummy"]["mesh"]
+    assert pathlib.Path(replayed) == (folder / "body.obj").resolve(), replayed
+    events = json.loads((out / "summary.json").read_text())["events"]
+    assert replay_events(drapelab, out, work / "relative_mesh_replay") == events, events
+    print(f"a relative dummy.mesh: the replay scene names {replayed}")
+
+
 def main():
     drapelab, source, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
     shutil.rmtree(work, ignore_errors=True)
@@ -90,6 +110,7 @@ def main():
     live_hands_without_input(drapelab, source, work)
     failed_last_write(drapelab, source, work)
     event_trace(drapelab, source, work)
+    relative_mesh(drapelab, source, work)
 
 
 if __name__ == "__main__":
