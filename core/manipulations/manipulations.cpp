@@ -188,9 +188,7 @@ void Manipulator::release(double t, const std::string& key, bool& changed) {
       if (h.held < 0) continue;
       constraints.release(h.held);
       add_event(t, "release", key, &h, h.held);
-      h.held = -1;
-      h.armed = false;
-      h.paused = false;
+      let_go(h, t);
       any = true;
     }
     if (!any) return ignore(t, key, "release targets the held particle and nothing is held");
@@ -203,11 +201,7 @@ void Manipulator::release(double t, const std::string& key, bool& changed) {
   HandState* holder = nullptr;
   for (HandState& h : m_hands)
     if (h.held == i) holder = &h;
-  if (holder) {
-    holder->held = -1;
-    holder->armed = false;
-    holder->paused = false;
-  }
+  if (holder) let_go(*holder, t);
   add_event(t, "release", key, holder, i);
   changed = true;
 }
@@ -236,9 +230,7 @@ void Manipulator::attach(double t, const std::string& key, detail::StateEdit& st
     y.segment<3>(3 * i) = dummy->position(o) + lift * dummy->normal(o);
     y.segment<3>(n3 + 3 * i).setZero();
     add_event(t, "attach", key, &h, i, o);
-    h.held = -1;
-    h.armed = false;
-    h.paused = false;
+    let_go(h, t);
     m_attaching.push_back({i, o, m_params.attach_iterations});
     any = true;
   }
@@ -284,11 +276,7 @@ void Manipulator::map(double t, const std::string& key, detail::StateEdit& state
   // Mapping lays out the whole cloth anew: every earlier constraint and hold refers to the
   // old layout, so all are dropped before the top row and column 0 are fixed.
   for (const int i : std::vector<int>(constraints.fixed_particles())) constraints.release(i);
-  for (HandState& h : m_hands) {
-    h.held = -1;
-    h.armed = false;
-    h.paused = false;
-  }
+  for (HandState& h : m_hands) let_go(h, t);
   m_attaching.clear();
   Eigen::VectorXd& y = state.edit();
   const Eigen::Index n3 = 3 * m_system.num_particles();
@@ -336,8 +324,11 @@ void Manipulator::update_holds(double t, detail::StateEdit& state, bool& changed
     if (candidate < 0) continue;
     if (!h.armed) {
       // After a release the hand is still at the particle: it must move away before it can
-      // hold again, or every release would be undone at once.
-      h.armed = distance >= m_params.hold_threshold;
+      // hold again, or every release would be undone at once. The hand itself must move: the
+      // cloth moving away from a still hand (an attached particle jumping onto the object)
+      // re-armed it, and a neighbour swinging in was held 2 ms after the attach (fifth audit).
+      const double moved = (motion->position - h.let_go).norm();
+      h.armed = distance >= m_params.hold_threshold && !(moved < m_params.hold_threshold);
       continue;
     }
     if (distance >= m_params.hold_threshold) continue;
@@ -348,6 +339,15 @@ void Manipulator::update_holds(double t, detail::StateEdit& state, bool& changed
     add_event(t, "hold", "", &h, candidate, -1, distance);
     changed = true;
   }
+}
+
+void Manipulator::let_go(HandState& h, double t) const {
+  h.held = -1;
+  h.armed = false;
+  h.paused = false;
+  const auto motion = m_track ? m_track->motion(h.hand, t) : std::nullopt;
+  h.let_go = motion && motion->available ? motion->position
+                                         : Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
 }
 
 std::vector<HandStatus> Manipulator::hands(double t, const Eigen::VectorXd& y) const {

@@ -2,6 +2,7 @@
 // The paper's manipulations (section 3; docs/model.md section 7): hold, release, attach and map, any number of
 // times in any order. They act between steps, by changing the constraint set and the state;
 // the caller restarts its integrator whenever update() reports a change.
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -67,8 +68,10 @@ class Manipulator {
   struct HandState {
     Hand hand;
     int held = -1;       ///< cloth particle fixed to this hand
-    bool armed = true;   ///< false after a release until the hand leaves every particle
+    bool armed = true;   ///< false after a release until the hand has moved away
     bool paused = false; ///< held particle parked while the hand is not tracked
+    /// Where the hand let go (release, attach, map); NaN when it was not tracked then.
+    Vec3 let_go = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   };
   struct PendingAttach {
     int particle;
@@ -81,6 +84,8 @@ class Manipulator {
   void attach(double t, const std::string& key, detail::StateEdit& state, bool& changed);
   void map(double t, const std::string& key, detail::StateEdit& state, bool& changed);
   void update_holds(double t, detail::StateEdit& state, bool& changed);
+  /// The hand holds nothing from time t on and must move away before it holds again.
+  void let_go(HandState& h, double t) const;
   void finish_attaches(double t, const Eigen::VectorXd& y, bool& changed);
   void add_event(double t, const std::string& type, const std::string& key, const HandState* hand,
                  int particle, int object_particle = -1, double value = 0.0);

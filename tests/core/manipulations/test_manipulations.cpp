@@ -145,6 +145,33 @@ TEST(Release, FreesTheHeldParticleAndItFalls) {
   EXPECT_EQ(m.events().back().type, "release");
 }
 
+// After a release the hand itself must move away before it holds again: a still hand that the
+// cloth left and came back to holds nothing (the cloth leaving it re-armed it, and after an
+// attach a neighbour swinging in was held 2 ms later), and a hand that moved away and came back
+// holds. Driven by states set directly, so that only the hand and the cloth's place matter.
+TEST(Hold, AfterAReleaseTheHandMustMoveAwayNotTheCloth) {
+  auto s = horizontal_cloth();
+  const Vec3 p = s->cloth().rest_positions.segment<3>(3 * 33);
+  const HandTrack track = track_of({frame(0.0, p), frame(0.1, p, {"r"}), frame(0.4, p),
+                                    frame(0.5, p + Vec3(0, 0.1, 0)), frame(0.6, p), frame(1.0, p)});
+  Manipulator m(*s, &track, ManipulationParams{});
+  const Eigen::VectorXd at_rest = s->initial_state(0.0);
+  Eigen::VectorXd lowered = at_rest;  // every particle 0.1 m below the hand's height
+  for (int i = 0; i < s->num_particles(); ++i) lowered[3 * i + 1] -= 0.1;
+  m.update(0.0, at_rest);   // holds 33
+  m.update(0.1, at_rest);   // r: releases it
+  m.update(0.2, lowered);   // the cloth left the still hand
+  m.update(0.3, at_rest);   // and came back to it: no hold
+  m.update(0.5, at_rest);   // the hand 0.1 m above the cloth: it moved away
+  m.update(0.6, at_rest);   // back at 33: holds it
+  ASSERT_EQ(m.events().size(), 3u) << describe(m, s->cloth());
+  EXPECT_EQ(m.events()[0].type, "hold");
+  EXPECT_EQ(m.events()[1].type, "release");
+  EXPECT_EQ(m.events()[2].type, "hold");
+  EXPECT_DOUBLE_EQ(m.events()[2].t, 0.6);
+  EXPECT_EQ(m.events()[2].particle, 33);
+}
+
 TEST(Release, OfAPinFreesThatPin) {
   auto s = horizontal_cloth();
   const HandTrack track = track_of({frame(0.1, std::nullopt, {"r"})});
