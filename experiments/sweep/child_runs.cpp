@@ -1,6 +1,7 @@
 #include "experiments/sweep/child_runs.hpp"
 
 #include <fmt/format.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -99,6 +100,7 @@ void run_in_children(std::size_t count, std::size_t jobs, const std::function<in
     std::cout.flush();
     std::cerr.flush();
     std::fflush(nullptr);
+    const pid_t parent = ::getpid();
     const pid_t pid = ::fork();
     if (pid < 0) {
       const std::string message = std::string("fork: ") + std::strerror(errno);
@@ -106,6 +108,12 @@ void run_in_children(std::size_t count, std::size_t jobs, const std::function<in
       throw std::runtime_error(message);
     }
     if (pid == 0) {
+      // A run ends with the experiment: killed by its process id (SIGTERM, SIGINT to it alone,
+      // not to the terminal's group), the parent left its runs going on alone, and a resume
+      // started meanwhile wrote the same run folders at once. The check after prctl catches a
+      // parent that died before it.
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (::getppid() != parent) ::_exit(70);
       int code = 70;  // EX_SOFTWARE: the task threw past its own handler
       try {
         code = task(k);
