@@ -61,6 +61,30 @@ void check_options(const LiveOptions& o) {
   check_run_folder(o.out_dir, o.overwrite);
 }
 
+// Only this server's own page, and clients that name it, may drive the run (docs/live.md,
+// "Protocol"): a page of any other site open in the same browser could POST a key or a hand
+// (a cross-origin text/plain POST needs no preflight), and a Host that is not this server is
+// what a DNS-rebinding page sends. Both are refused with 403.
+void refuse_other_origins(httplib::Server& server, int port) {
+  const std::string ours[] = {fmt::format("127.0.0.1:{}", port), fmt::format("localhost:{}", port)};
+  const auto is_ours = [ours](const std::string& host) {
+    return host == ours[0] || host == ours[1];
+  };
+  server.set_pre_routing_handler([is_ours](const httplib::Request& req, httplib::Response& res) {
+    const std::string host = req.get_header_value("Host");
+    const std::string origin = req.get_header_value("Origin");
+    const std::string scheme = "http://";
+    const bool origin_ours = !req.has_header("Origin") ||
+                             (origin.rfind(scheme, 0) == 0 && is_ours(origin.substr(scheme.size())));
+    if (is_ours(host) && origin_ours) return httplib::Server::HandlerResponse::Unhandled;
+    res.status = 403;
+    res.set_content(is_ours(host) ? "another site's page may not drive this run (Origin " + origin + ")\n"
+                                  : "not this server (Host " + host + ")\n",
+                    "text/plain");
+    return httplib::Server::HandlerResponse::Handled;
+  });
+}
+
 // GET /events: one server-sent event per new frame until the run ends or the client leaves.
 void serve_events(httplib::Server& server, const LiveSession& session) {
   server.Get("/events", [&session](const httplib::Request&, httplib::Response& res) {
@@ -164,6 +188,7 @@ int live(const LiveOptions& o) {
   // sending gigabytes must get 413, not the server's memory. Each page's event stream holds a
   // worker for as long as the page is open, so there are more workers than tabs anyone opens.
   server.set_payload_max_length(1 << 20);
+  refuse_other_origins(server, o.port);
   server.new_task_queue = [] { return new httplib::ThreadPool(64); };
   const std::string page = live_page(session.scene_json());
   server.Get("/", [&page](const httplib::Request&, httplib::Response& res) {

@@ -36,7 +36,18 @@ def main():
             line = events.readline().decode()
             if line.startswith("data: "):
                 frames.append(json.loads(line[6:]))
-        request = urllib.request.Request(f"http://127.0.0.1:{port}/key", data=b"m", method="POST")
+        # another site's page (its Origin) or a DNS-rebinding name (its Host) may not press a key
+        for header, value, says in [("Origin", "http://evil.example", "another site's page"),
+                                    ("Host", f"evil.example:{port}", "not this server")]:
+            request = urllib.request.Request(f"http://127.0.0.1:{port}/key", data=b"m",
+                                             method="POST", headers={header: value})
+            try:
+                urllib.request.urlopen(request, timeout=10)
+                raise AssertionError(f"{header}: {value} pressed a key")
+            except urllib.error.HTTPError as e:
+                assert e.code == 403 and says in e.read().decode(), (header, e.code)
+        request = urllib.request.Request(f"http://127.0.0.1:{port}/key", data=b"m", method="POST",
+                                         headers={"Origin": f"http://127.0.0.1:{port}"})
         assert urllib.request.urlopen(request, timeout=10).read() == b"ok\n"
         while not any(e.get("key") == "m" and e["t"] > 0.02 for e in frames[-1]["events"]):
             line = events.readline().decode()
