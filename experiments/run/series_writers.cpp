@@ -20,6 +20,10 @@ bool OutputClock::due(const Simulation& simulation) {
   return true;
 }
 
+bool OutputClock::due_at_stop(const Simulation& simulation) const {
+  return !simulation.status().ended() && simulation.time() > m_written;
+}
+
 EnergyWriter::EnergyWriter(const std::filesystem::path& file, double interval, double duration)
     : m_file(file), m_out(open_for_writing(file)), m_clock(interval, duration) {
   m_out << "t,kinetic,spring,gravity,collision,total\n";
@@ -42,9 +46,13 @@ void EnergyWriter::write(const Simulation& simulation) {
   m_out << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", simulation.time(),
                        e.kinetic, e.spring, e.gravity, e.collision, e.total());
   check_written(m_out, m_file);
+  m_clock.wrote(simulation.time());
 }
 
-void EnergyWriter::on_end(const Simulation& /*simulation*/) { finish_written(m_out, m_file); }
+void EnergyWriter::on_end(const Simulation& simulation) {
+  if (m_clock.due_at_stop(simulation)) write(simulation);
+  finish_written(m_out, m_file);
+}
 
 HandsWriter::HandsWriter(const std::filesystem::path& file, double interval, double duration)
     : m_file(file), m_out(open_for_writing(file)), m_clock(interval, duration) {
@@ -64,8 +72,12 @@ void HandsWriter::write(const Simulation& simulation) {
                          hand_name(h.hand), h.available ? 1 : 0, h.position.x(),
                          h.position.y(), h.position.z(), h.candidate, h.distance, h.held);
   check_written(m_out, m_file);
+  m_clock.wrote(t);
 }
 
-void HandsWriter::on_end(const Simulation& /*simulation*/) { finish_written(m_out, m_file); }
+void HandsWriter::on_end(const Simulation& simulation) {
+  if (m_clock.due_at_stop(simulation)) write(simulation);
+  finish_written(m_out, m_file);
+}
 
 }  // namespace drape

@@ -15,8 +15,14 @@ class OutputClock {
  public:
   OutputClock(double interval, double duration);
   bool due(const Simulation& simulation);
+  /// Records that a row was written at time t.
+  void wrote(double t) { m_written = t; }
+  /// At on_end: true when the run was stopped before its end (a live run's Ctrl-C) at a time
+  /// with no row yet, the row its replay, which ends there, writes.
+  bool due_at_stop(const Simulation& simulation) const;
 
  private:
+  double m_written = -1.0;
   double m_interval;
   double m_tolerance;
   long m_ticks = 0;  // output times are multiples of the interval, not running sums

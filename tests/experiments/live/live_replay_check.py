@@ -10,7 +10,8 @@
 3. summary.json is written last: a folder without it is not finished (docs/outputs.md).
 4. `output.event_trace_interval` gives live the event_trace/ of `drapelab run` (it was ignored),
    the same frames as the replay's.
-5. A dummy mesh named relative to the live scene's folder is found by the replay scene, which
+5. Stopped by Ctrl-C, energy.csv and hands.csv end with the stop time's row, as the replay's do.
+6. A dummy mesh named relative to the live scene's folder is found by the replay scene, which
    lives in OUT (the relative name was copied as it was).
 Usage: live_replay_check.py DRAPELAB SOURCE_DIR WORK_DIR
 """
@@ -39,6 +40,10 @@ def key_between_scene_events(drapelab, source, work):
     assert any(e.get("keys") == ["r"] for e in scene["input"]["events"]), scene["input"]["events"]
     events = json.loads((out / "summary.json").read_text())["events"]
     assert events and replay_events(drapelab, out, work / "keys_replay") == events, events
+    # stopped by Ctrl-C, the live run writes the stop time's rows, which its replay ends with
+    for name in ("energy.csv", "hands.csv"):
+        live, replayed = (out / name).read_text(), (work / "keys_replay" / name).read_text()
+        assert live == replayed, (name, live.splitlines()[-2:], replayed.splitlines()[-2:])
     print(f"a live key among the scene's events at {times}: replayed {len(events)} events alike")
 
 
