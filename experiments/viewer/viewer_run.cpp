@@ -145,28 +145,30 @@ void read_energy(const fs::path& file, ViewerRun& run) {
 // The summary.json fields the page shows, each of its type (drapelab run writes them so): a
 // damaged one is named here, where the page would throw at load and stay blank (an event
 // without a numeric t) or view would stop on nlohmann's message naming no file.
+bool finite_number(const nlohmann::json& j) { return j.is_number() && std::isfinite(j.get<double>()); }
+
 void check_page_fields(const nlohmann::json& summary, const std::string& file) {
+  // A field the page reads, when present, must satisfy `ok` (absent ones it does without).
+  using Check = bool (*)(const nlohmann::json&);
   const auto expect = [&](const nlohmann::json& object, const std::string& key,
-                          const std::string& field, bool ok, const char* expected) {
-    if (object.contains(key) && !ok) throw InputError(file, field, std::string("expected ") + expected);
+                          const std::string& field, Check ok, const char* expected) {
+    if (object.contains(key) && !ok(object[key]))
+      throw InputError(file, field, std::string("expected ") + expected);
   };
-  const auto number = [](const nlohmann::json& j) {
-    return j.is_number() && std::isfinite(j.get<double>());
-  };
-  for (const char* key : {"status", "integrator"})
-    expect(summary, key, key, summary.contains(key) && summary[key].is_string(), "a string");
+  const Check number = finite_number;
+  const Check string = [](const nlohmann::json& j) { return j.is_string(); };
+  for (const char* key : {"status", "integrator"}) expect(summary, key, key, string, "a string");
   expect(summary, "table", "table",
-         summary.contains("table") && (summary["table"].is_string() || summary["table"].is_null()),
-         "a string or null");
+         [](const nlohmann::json& j) { return j.is_string() || j.is_null(); }, "a string or null");
   for (const char* key : {"duration", "sim_time"})
-    expect(summary, key, key, summary.contains(key) && number(summary[key]), "a finite number");
-  expect(summary, "dt", "dt", summary.contains("dt") && (summary["dt"].is_null() || number(summary["dt"])),
+    expect(summary, key, key, number, "a finite number");
+  expect(summary, "dt", "dt",
+         [](const nlohmann::json& j) { return j.is_null() || finite_number(j); },
          "a finite number or null");
-  expect(summary, "adaptive", "adaptive", summary.contains("adaptive") && summary["adaptive"].is_boolean(),
+  expect(summary, "adaptive", "adaptive", [](const nlohmann::json& j) { return j.is_boolean(); },
          "true or false");
   const nlohmann::json& scene = summary["scene"];
-  expect(scene, "description", "scene.description",
-         scene.contains("description") && scene["description"].is_string(), "a string");
+  expect(scene, "description", "scene.description", string, "a string");
   const nlohmann::json& events = summary["events"];
   if (!events.is_array()) throw InputError(file, "events", "expected an array");
   for (std::size_t k = 0; k < events.size(); ++k) {
@@ -176,10 +178,10 @@ void check_page_fields(const nlohmann::json& summary, const std::string& file) {
     if (!e.contains("t") || !number(e["t"])) throw InputError(file, field + ".t", "expected a finite number");
     if (!e.contains("type") || !e["type"].is_string())
       throw InputError(file, field + ".type", "expected a string");
-    for (const char* key : {"key", "hand"})
-      expect(e, key, field + "." + key, e.contains(key) && e[key].is_string(), "a string");
+    for (const char* key : {"key", "hand"}) expect(e, key, field + "." + key, string, "a string");
     for (const char* key : {"particle", "object_particle"})
-      expect(e, key, field + "." + key, e.contains(key) && e[key].is_number_integer(), "an integer");
+      expect(e, key, field + "." + key,
+             [](const nlohmann::json& j) { return j.is_number_integer(); }, "an integer");
   }
 }
 
