@@ -180,12 +180,15 @@ void LiveSession::apply_keys() {
   const double step = m_run->options().adaptive ? 1e-3 : m_run->options().dt;
   const double t = simulation.time() + step;
   HandInput& input = *m_run->input();
+  std::vector<HandFrame> frames(1);
+  frames[0].keys = keys;
   if (m_live_hands) {
-    for (const std::string& k : keys) m_live_hands->add_key(t, k);  // in the track at sample()
+    // In the track at once and at every rebuild (sample()), which starts from LiveHands' keys.
+    for (const std::string& k : keys) m_live_hands->add_key(t, k);
+    frames[0].t = t;
+    input.track.add_keys(frames, TimeMap{});
   } else {
-    std::vector<HandFrame> frames(1);
     frames[0].t = (t - input.config.time.offset) / input.config.time.scale;
-    frames[0].keys = keys;
     input.track.add_keys(frames, input.config.time);
   }
   std::lock_guard<std::mutex> lock(m_mutex);
@@ -278,6 +281,12 @@ std::string LiveSession::run() {
         std::chrono::duration<double>(frame_interval));
     std::this_thread::sleep_until(next_frame);
   }
+  // Keys taken after the last turn (Ctrl-C right after them) go in a step past the end: listed
+  // as ignored, as the replay, which ends there, lists them (a run that diverged or failed
+  // lists no key after its end, nor does its replay).
+  apply_keys();
+  if (!simulation.status().ended() || simulation.status().status == "ok")
+    simulation.list_unplayed_keys();
   const std::string status = simulation.status().ended() ? simulation.status().status : "stopped";
   write_outputs(status);
   return status;
@@ -317,16 +326,14 @@ void LiveSession::write_outputs(const std::string& status) {
 // no input at all writes no recording (drapelab's reader refuses a file without frames), and
 // its replay scene has no hand input; returns whether it wrote one.
 bool LiveSession::write_recording(nlohmann::json& scene) {
-  const double end = m_run->simulation().time() + 1e-9;  // keys queued but never reached: out
   const std::filesystem::path file = std::filesystem::absolute(m_out_dir / live_run_file::recording);
   const InputConfig& config = m_run->input()->config;
   Recording recording{file.string(), {}, {}};
   if (m_live_hands) {
-    for (HandFrame& frame : m_live_hands->recording()) {
-      if (frame.t > end) frame.keys.clear();
-      // Hand samples past the end stay: the track had them when it interpolated before it.
+    // Frames past the end stay: the track had their hands when it interpolated before it, and
+    // their keys are the ones the run listed as ignored.
+    for (HandFrame& frame : m_live_hands->recording())
       if (frame.left || frame.right || !frame.keys.empty()) recording.frames.push_back(frame);
-    }
     InputConfig replay = config;
     replay.recording = recording.frames.empty() ? "" : file.string();
     replay.format = RecordingFormat::Drapelab;
@@ -336,7 +343,6 @@ bool LiveSession::write_recording(nlohmann::json& scene) {
     scene["input"] = input_config_to_json(replay);
   } else {
     for (const auto& [t, k] : m_applied_keys) {
-      if (t > end) continue;
       if (recording.frames.empty() || recording.frames.back().t != t)
         recording.frames.push_back(HandFrame{t, std::nullopt, std::nullopt, {}});
       recording.frames.back().keys.push_back(k);

@@ -99,6 +99,9 @@ class Simulation {
   const RunStatus& status() const { return m_status; }
   const ClothSystem& system() const { return m_system; }
   const Manipulator& manipulator() const { return m_manipulator; }
+  /// Lists the input's keys not played so far as ignored at the current time, as the end of a
+  /// run does (a live run stopped before its end; keys pressed after an end).
+  void list_unplayed_keys() { m_manipulator.ignore_keys_after(m_t); }
   const Integrator& integrator() const { return m_integrator; }
   const SimulationSettings& settings() const { return m_settings; }
   /// Smallest and largest step taken (0 before the first step).

@@ -11,15 +11,20 @@
 4. `output.event_trace_interval` gives live the event_trace/ of `drapelab run` (it was ignored),
    the same frames as the replay's.
 5. Stopped by Ctrl-C, energy.csv and hands.csv end with the stop time's row, as the replay's do.
-6. A dummy mesh named relative to the live scene's folder is found by the replay scene, which
+6. A key answered `ok` just before Ctrl-C is in the events (applied, or listed as ignored after
+   the end) of the live run and of its replay alike; it vanished from both.
+7. A dummy mesh named relative to the live scene's folder is found by the replay scene, which
    lives in OUT (the relative name was copied as it was).
 Usage: live_replay_check.py DRAPELAB SOURCE_DIR WORK_DIR
 """
 import json
 import pathlib
 import shutil
+import signal
 import subprocess
 import sys
+import time
+import urllib.request
 
 import numpy
 
@@ -107,6 +112,28 @@ def relative_mesh(drapelab, source, work):
     print(f"a relative dummy.mesh: the replay scene names {replayed}")
 
 
+def key_before_ctrl_c(drapelab, source, work):
+    # The key and Ctrl-C inside one loop turn's sleep (most of the 1/30 s turn), as a person
+    # pressing a key and Ctrl-C at once: the key is taken after the last turn.
+    for mode in ([], ["--live-hands"]):
+        out = work / ("late_key" + "".join(mode))
+        port = free_port()
+        live = subprocess.Popen([drapelab, "live", source / "experiments/scenes/fig6_map.json",
+                                 "--port", str(port), "--out", out, "--set", "duration=60", *mode],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        live.stdout.readline()  # listening
+        time.sleep(0.5)
+        request = urllib.request.Request(f"http://127.0.0.1:{port}/key", data=b"r", method="POST")
+        assert urllib.request.urlopen(request, timeout=10).read() == b"ok\n"
+        live.send_signal(signal.SIGINT)
+        assert live.wait(timeout=60) == 0, live.stderr.read()
+        events = json.loads((out / "summary.json").read_text())["events"]
+        assert any(e.get("key") == "r" for e in events), events
+        assert replay_events(drapelab, out, work / f"{out.name}_replay") == events, events
+        print(f"a key just before Ctrl-C{''.join(' ' + m for m in mode)}: "
+              f"{[e for e in events if e.get('key') == 'r']}")
+
+
 def main():
     drapelab, source, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
     shutil.rmtree(work, ignore_errors=True)
@@ -116,6 +143,7 @@ def main():
     failed_last_write(drapelab, source, work)
     event_trace(drapelab, source, work)
     relative_mesh(drapelab, source, work)
+    key_before_ctrl_c(drapelab, source, work)
 
 
 if __name__ == "__main__":
