@@ -332,7 +332,7 @@ bool LiveSession::write_recording(nlohmann::json& scene) {
   if (m_live_hands) {
     // Frames past the end stay: the track had their hands when it interpolated before it, and
     // their keys are the ones the run listed as ignored.
-    for (HandFrame& frame : m_live_hands->recording())
+    for (const HandFrame& frame : m_live_hands->recording())
       if (frame.left || frame.right || !frame.keys.empty()) recording.frames.push_back(frame);
     InputConfig replay = config;
     replay.recording = recording.frames.empty() ? "" : file.string();

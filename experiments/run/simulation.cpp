@@ -48,7 +48,7 @@ bool Simulation::advance(double t_until, const std::function<bool()>& keep_going
   const double target = std::min(t_until, m_settings.duration);
   while (!m_status.ended() && m_t < target - eps && (!keep_going || keep_going())) take_step();
   if (!m_status.ended() && at_end()) {
-    m_manipulator.ignore_keys_after(m_t);
+    list_unplayed_keys();
     end("ok", "");
   }
   // The observers' time is theirs, not the method's (the restart error's branches take seconds).

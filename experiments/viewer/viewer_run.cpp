@@ -142,11 +142,11 @@ void read_energy(const fs::path& file, ViewerRun& run) {
   }
 }
 
+bool finite_number(const nlohmann::json& j) { return j.is_number() && std::isfinite(j.get<double>()); }
+
 // The summary.json fields the page shows, each of its type (drapelab run writes them so): a
 // damaged one is named here, where the page would throw at load and stay blank (an event
 // without a numeric t) or view would stop on nlohmann's message naming no file.
-bool finite_number(const nlohmann::json& j) { return j.is_number() && std::isfinite(j.get<double>()); }
-
 void check_page_fields(const nlohmann::json& summary, const std::string& file) {
   // A field the page reads, when present, must satisfy `ok` (absent ones it does without).
   using Check = bool (*)(const nlohmann::json&);
