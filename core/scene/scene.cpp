@@ -323,6 +323,12 @@ Scene parse_scene(const nlohmann::json& source, const std::string& file,
   if (!s.integrator.is_object()) throw in.error("integrator", "expected an object");
   s.duration = in.non_negative("duration", in.number("duration"));
   in.at_most("duration", s.duration, limits::max_duration);
+  // A live run's replay stops where the live run did but keeps the live run's bound (docs/live.md).
+  s.runaway_horizon = in.at_most("runaway_horizon", in.number("runaway_horizon", s.duration),
+                                 limits::max_duration);
+  if (!(s.runaway_horizon >= s.duration))
+    throw in.error("runaway_horizon", "must be at least duration (" +
+                                          nlohmann::json(s.duration).dump() + " s)");
   if (in.has("input")) {
     s.input = in.raw("input");
     if (!s.input.is_object()) throw in.error("input", "expected an object");

@@ -59,6 +59,8 @@ struct Scene {
   nlohmann::json integrator;  ///< the `integrator` object
   nlohmann::json input;       ///< the `input` object, null when absent
   double duration = 0.0;
+  /// The free fall the runaway bound allows for [s], at least `duration` (docs/outputs.md).
+  double runaway_horizon = 0.0;
   ManipulationParams manipulation;
   OutputOptions output;
   Perturbation perturbation;

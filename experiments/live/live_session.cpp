@@ -305,8 +305,11 @@ void LiveSession::write_outputs(const std::string& status) {
   // absolute (a relative dummy.mesh was not found by the replay).
   if (scene.contains("dummy")) make_dummy_paths_absolute(scene["dummy"], m_scene.base_dir);
   const bool recorded = write_recording(scene);
-  // The replay scene: the live scene, its keys inline, ending where the live run stopped.
+  // The replay scene: the live scene, its keys inline, ending where the live run stopped, with
+  // the live run's runaway bound (a shorter duration would shrink it: the replay could diverge
+  // where the live run did not, or earlier).
   scene["duration"] = simulation.time();
+  scene["runaway_horizon"] = m_scene.runaway_horizon;
   write_json(m_out_dir / live_run_file::replay_scene, scene);
   // summary.json last: a folder is complete only when it exists (docs/outputs.md), so a write
   // that fails before it leaves no folder that looks finished.

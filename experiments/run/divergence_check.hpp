@@ -15,7 +15,8 @@ namespace drape {
 /// energy rise is what shows those).
 class DivergenceCheck {
  public:
-  DivergenceCheck(double gravity, double duration) : m_base(10.0 + 2.0 * gravity * duration) {}
+  /// `horizon`: the time a free fall may last, the run's duration (or a live run's, in its replay).
+  DivergenceCheck(double gravity, double horizon) : m_base(10.0 + 2.0 * gravity * horizon) {}
 
   /// Raises the bound by the energy stored in a state (call at the start and after events).
   void account_for(const ClothSystem& system, const EnergyBreakdown& e);

@@ -38,6 +38,7 @@ SceneSimulation::SceneSimulation(const Scene& scene, const std::string& integrat
   m_integrator = make_integrator(m_options, *m_system);
   SimulationSettings settings;
   settings.duration = scene.duration;
+  settings.runaway_horizon = scene.runaway_horizon;
   settings.max_steps = m_options.max_steps;
   settings.adaptive = m_options.adaptive;
   settings.dt = m_options.dt;

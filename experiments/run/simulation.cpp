@@ -23,7 +23,8 @@ Simulation::Simulation(ClothSystem& system, Manipulator& manipulator, Integrator
       m_manipulator(manipulator),
       m_integrator(integrator),
       m_settings(settings),
-      m_divergence(system.params().gravity.norm(), settings.duration) {
+      m_divergence(system.params().gravity.norm(),
+                   std::max(settings.duration, settings.runaway_horizon)) {
   const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(system.num_particles());
   system.project(0.0, y0.head(n3), y0.tail(n3));
   if (auto changed = manipulator.update(0.0, y0)) y0 = std::move(*changed);

@@ -37,6 +37,8 @@ class SimulationObserver {
 /// What the loop needs besides the model: when to stop and how the integrator steps.
 struct SimulationSettings {
   double duration = 0.0;  ///< end time [s]
+  /// The free fall the runaway bound allows for [s]; the duration when smaller (DivergenceCheck).
+  double runaway_horizon = 0.0;
   long max_steps = std::numeric_limits<long>::max();
   bool adaptive = false;  ///< the integrator chooses its steps
   double dt = 0.0;        ///< fixed step [s] (ignored when adaptive)

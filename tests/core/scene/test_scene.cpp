@@ -42,6 +42,15 @@ TEST(Scene, ValidSceneParsesWithDefaults) {
   EXPECT_EQ(s.pins[1].col, 4);
   EXPECT_TRUE(s.dummy.is_null());
   EXPECT_EQ(s.duration, 0.5);
+  EXPECT_EQ(s.runaway_horizon, 0.5) << "the runaway bound's free fall lasts the run";
+}
+
+TEST(Scene, TheRunawayHorizonIsAtLeastTheDuration) {
+  EXPECT_EQ(parse_scene(with("runaway_horizon=600"), "scene.json", ".").runaway_horizon, 600.0);
+  EXPECT_EQ(error_for(with("runaway_horizon=0.4")),
+            "scene.json: runaway_horizon: must be at least duration (0.5 s)");
+  EXPECT_EQ(error_for(with("runaway_horizon=2e6")),
+            "scene.json: runaway_horizon: must be at most 1000000.0, got 2000000.0");
 }
 
 TEST(Scene, AbsentDummyIsTheDressForm) {

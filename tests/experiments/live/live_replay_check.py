@@ -15,6 +15,10 @@
    the end) of the live run and of its replay alike; it vanished from both.
 7. A dummy mesh named relative to the live scene's folder is found by the replay scene, which
    lives in OUT (the relative name was copied as it was).
+8. The replay keeps the live run's runaway bound (`runaway_horizon`): a live run beyond the
+   stability limit that stopped `ok` on Ctrl-C replays `ok`, and one that diverged diverges at
+   the same time for the same reason (the replay's shorter duration shrank the bound, so it
+   diverged where the live run had not, or earlier).
 Usage: live_replay_check.py DRAPELAB SOURCE_DIR WORK_DIR
 """
 import json
@@ -134,6 +138,35 @@ def key_before_ctrl_c(drapelab, source, work):
               f"{[e for e in events if e.get('key') == 'r']}")
 
 
+def runaway_bound(drapelab, source, work):
+    scene = source / "experiments/scenes/fig2_hold.json"
+    # diverges within 0.02 s of simulated time, long before the duration
+    out = work / "runaway"
+    live = subprocess.run([drapelab, "live", scene, "--port", str(free_port()), "--out", out,
+                           "--set", "integrator.dt=0.005", "--set", "duration=5"],
+                          capture_output=True, text=True, timeout=60)
+    replay = subprocess.run([drapelab, "run", out / "scene.json", "--out", work / "runaway_replay",
+                             "-q"], capture_output=True, text=True, timeout=60)
+    assert live.returncode == replay.returncode == 3, (live, replay)
+    summaries = [json.loads((d / "summary.json").read_text()) for d in (out, work / "runaway_replay")]
+    live_end, replay_end = [(s["status"], s["sim_time"], s["reason"]) for s in summaries]
+    assert live_end == replay_end, (live_end, replay_end)
+    # beyond the stability limit, saturating below the bound of a 600 s session: stopped after 3 s
+    out = work / "saturated"
+    with LiveRun(drapelab, scene, out, "--set", "integrator.dt=0.00062", "--set", "duration=600") as run:
+        run.wait_for(lambda f: f["t"] > 2.0, "2 s of the unstable run")
+        code, stdout, stderr = run.stop()
+        assert code == 0, (code, stdout, stderr)
+    live_summary = json.loads((out / "summary.json").read_text())
+    replay_events(drapelab, out, work / "saturated_replay")
+    replayed = json.loads((work / "saturated_replay" / "summary.json").read_text())
+    assert replayed["status"] == "ok" and replayed["events"] == live_summary["events"], replayed
+    assert replayed["energy_final"] == live_summary["energy_final"], (replayed, live_summary)
+    print(f"the runaway bound: diverged live and in the replay at {summaries[0]['sim_time']} s; "
+          f"{live_summary['sim_time']:.2f} s beyond the stability limit (energy drift "
+          f"{live_summary['energy_drift_max_rel']:.3g}) replays ok")
+
+
 def main():
     drapelab, source, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
     shutil.rmtree(work, ignore_errors=True)
@@ -144,6 +177,7 @@ def main():
     event_trace(drapelab, source, work)
     relative_mesh(drapelab, source, work)
     key_before_ctrl_c(drapelab, source, work)
+    runaway_bound(drapelab, source, work)
 
 
 if __name__ == "__main__":

@@ -1,5 +1,6 @@
 // The shared step/event loop: outputs never change the steps, events land exactly and reset the
 // integrator, summary.json reports the steps taken, and the interpolant samples between steps.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -137,6 +138,34 @@ TEST(Simulation, TraceFramesBetweenStepsComeFromTheInterpolantAtExactTimes) {
     EXPECT_NEAR(vy, -9.81 * t, 1e-11) << t;
   }
   EXPECT_EQ(frames, 2 * 101);
+}
+
+// The runaway bound allows a free fall over `runaway_horizon` (default: the duration), so a run
+// cut short with the longer run's horizon, as a live run's replay is, diverges where the longer
+// run did, with its reason; cut short without it, its bound is the shorter fall's.
+TEST(Simulation, ARunCutShortKeepsTheRunawayBoundOfItsHorizon) {
+  const auto unstable = [](double duration, double horizon) {
+    Scene scene = swinging(R"({"name": "leapfrog", "dt": 0.008})", 0.05);
+    scene.duration = duration;
+    scene.runaway_horizon = horizon;
+    return scene;
+  };
+  // The bound the reason prints: the cloth starts at rest and unstretched, so 10 + 2 |g| horizon.
+  const auto bound_text = [](double horizon) {
+    return fmt::format("above the bound {:.3g} m/s", 10.0 + 2.0 * 9.81 * horizon);
+  };
+  const RunOutcome whole = run_into(unstable(0.5, 0.5), "horizon_whole");
+  ASSERT_EQ(whole.status, "diverged");
+  EXPECT_NE(whole.reason.find(bound_text(0.5)), std::string::npos) << whole.reason;
+  const double t = whole.summary["sim_time"];
+  ASSERT_LT(t, 0.25);
+  const RunOutcome cut = run_into(unstable(t, 0.5), "horizon_cut");
+  EXPECT_EQ(cut.status, "diverged");
+  EXPECT_EQ(cut.summary["sim_time"], whole.summary["sim_time"]);
+  EXPECT_EQ(cut.reason, whole.reason);
+  const RunOutcome shrunk = run_into(unstable(t, t), "horizon_shrunk");
+  EXPECT_EQ(shrunk.status, "diverged");
+  EXPECT_NE(shrunk.reason.find(bound_text(t)), std::string::npos) << shrunk.reason;
 }
 
 }  // namespace
