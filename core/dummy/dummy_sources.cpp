@@ -185,12 +185,20 @@ DummySections make_dummy_sections(const nlohmann::json& spec, const std::string&
   return sections;
 }
 
-void make_dummy_paths_absolute(nlohmann::json& spec, const std::filesystem::path& base_dir) {
-  if (!spec.is_object()) return;
+std::vector<std::pair<std::string, std::filesystem::path>> dummy_file_paths(
+    const nlohmann::json& spec, const std::filesystem::path& base_dir) {
+  std::vector<std::pair<std::string, std::filesystem::path>> files;
+  if (!spec.is_object()) return files;
   const SourceContext context{base_dir};
   for (const auto& [key, reader] : kSources)
     if (reader != read_builtin && spec.contains(key) && spec[key].is_string())
-      spec[key] = std::filesystem::absolute(context.resolve(spec[key].get<std::string>())).string();
+      files.emplace_back(key, context.resolve(spec[key].get<std::string>()));
+  return files;
+}
+
+void make_dummy_paths_absolute(nlohmann::json& spec, const std::filesystem::path& base_dir) {
+  for (const auto& [key, path] : dummy_file_paths(spec, base_dir))
+    spec[key] = std::filesystem::absolute(path).string();
 }
 
 Dummy make_dummy(const nlohmann::json& spec, const std::string& file, const std::string& path,

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/dummy/dummy.hpp"
 
@@ -41,6 +43,11 @@ DummySections resample_sections(const DummySections& profile, int sections, int 
 
 /// Scales heights, centres and radii about the origin, then translates by offset.
 void place_sections(DummySections& sections, double scale, const Vec3& offset);
+
+/// The files a dummy spec names (`file`, `mesh`), by key, relative names resolved against
+/// `base_dir` (the scene's folder); none for a builtin, null or malformed spec.
+std::vector<std::pair<std::string, std::filesystem::path>> dummy_file_paths(
+    const nlohmann::json& spec, const std::filesystem::path& base_dir);
 
 /// Rewrites the file names of a dummy spec (`file`, `mesh`) that are relative to `base_dir` as
 /// absolute paths, for a copy of the scene written elsewhere (a live run's replay scene).

@@ -54,6 +54,11 @@ struct RunSpec {
   /// FNV-1a of the scene file's bytes (hex): a run of an edited scene is another run, so that
   /// resume and merge never take its old results (run.json and the id hold it).
   std::string scene_digest;
+  /// The files the scene names with the run's overrides (`dummy.file`, `dummy.mesh`,
+  /// `input.recording`), field -> FNV-1a of the file's bytes: a run of an edited recording or
+  /// mesh is another run too. Empty (and absent from run.json, so the ids of runs naming no
+  /// file stay as they were) when the scene names none.
+  nlohmann::json file_digests = nlohmann::json::object();
   std::vector<Override> parameters;  ///< the swept and case values, in plan order
   std::vector<Override> overrides;   ///< everything applied: set, duration, parameters
   std::string reference;            ///< id of this run's reference run, "" for none

@@ -5,11 +5,14 @@
 #include <cstdint>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <utility>
 
+#include "core/dummy/dummy_sources.hpp"
 #include "core/scene/input_error.hpp"
+#include "core/scene/json_reader.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "experiments/sweep/experiment.hpp"
@@ -36,6 +39,50 @@ std::string slug_part(const nlohmann::json& value) {
       ch = '_';
   return text;
 }
+
+std::string file_digest(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return fmt::format("{:016x}", fnv1a(bytes));
+}
+
+// The digests of the files a run's scene names (RunSpec::file_digests), each file read once per
+// plan. A scene or override that does not parse, or a file that is not a readable regular file,
+// gives no digest: the plan's check (validate_runs) then names the field.
+class FileDigests {
+ public:
+  nlohmann::json of(const RunSpec& run) {
+    nlohmann::json digests = nlohmann::json::object();
+    try {
+      nlohmann::json scene = read_json_file(run.scene_path.string());
+      for (const std::string& assignment : run.assignments()) apply_override(scene, assignment);
+      const std::filesystem::path base_dir = run.scene_path.parent_path();
+      std::vector<std::pair<std::string, std::filesystem::path>> files;
+      if (scene.contains("dummy"))
+        for (const auto& [key, path] : dummy_file_paths(scene["dummy"], base_dir))
+          files.emplace_back("dummy." + key, path);
+      if (scene.contains("input") && scene["input"].is_object() &&
+          scene["input"].contains("recording") && scene["input"]["recording"].is_string()) {
+        const std::filesystem::path name = scene["input"]["recording"].get<std::string>();
+        files.emplace_back("input.recording", name.is_relative() ? base_dir / name : name);
+      }
+      for (const auto& [field, path] : files) {
+        std::error_code error;
+        if (!std::filesystem::is_regular_file(path, error)) continue;
+        const std::string key = path.lexically_normal().string();
+        auto it = m_known.find(key);
+        if (it == m_known.end()) it = m_known.emplace(key, file_digest(path)).first;
+        digests[field] = it->second;
+      }
+    } catch (const std::exception&) {
+      // left to validate_runs, which names the file and the field
+    }
+    return digests;
+  }
+
+ private:
+  std::map<std::string, std::string> m_known;
+};
 
 void append_run(std::vector<RunSpec>& plan, std::set<std::string>& ids, RunSpec run) {
   run.id = run_id(run);
@@ -69,6 +116,7 @@ nlohmann::json RunSpec::to_json() const {
                       {"overrides", assignments()},
                       {"reference", reference},
                       {"is_reference", is_reference}};
+  if (!file_digests.empty()) j["file_digests"] = file_digests;
   if (bisect) {
     j["bisect"] = {{"parameter", bisect->parameter}, {"low", bisect->low},
                    {"high", bisect->high}, {"steps", bisect->steps}};
@@ -104,7 +152,7 @@ namespace {
 
 // Adds a run and, when the experiment has one, its reference run.
 void plan_run(const Experiment& e, RunSpec run, std::vector<RunSpec>& plan,
-              std::set<std::string>& ids, std::vector<RunSpec>& references) {
+              std::set<std::string>& ids, std::vector<RunSpec>& references, FileDigests& files) {
   if (!e.reference.empty()) {
     // The reference shares the scene and every non-integrator value, solved with the
     // reference's method, so that the difference is the integrator's error alone. A run's
@@ -120,6 +168,7 @@ void plan_run(const Experiment& e, RunSpec run, std::vector<RunSpec>& plan,
     ref.parameters.insert(ref.parameters.end(), e.reference.begin(), e.reference.end());
     ref.overrides = e.set;
     ref.overrides.insert(ref.overrides.end(), ref.parameters.begin(), ref.parameters.end());
+    ref.file_digests = files.of(ref);
     ref.id = run_id(ref);
     run.reference = ref.id;
     // The restart error's reference is the reference run's integrator, as its scene reads it
@@ -156,11 +205,8 @@ std::vector<RunSpec> expand_runs(const Experiment& e) {
   std::vector<RunSpec> references;
   std::set<std::string> ids;
   std::vector<std::string> digests;
-  for (const auto& path : e.scene_paths) {
-    std::ifstream in(path, std::ios::binary);
-    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    digests.push_back(fmt::format("{:016x}", fnv1a(bytes)));
-  }
+  for (const auto& path : e.scene_paths) digests.push_back(file_digest(path));
+  FileDigests files;
   for (std::size_t s = 0; s < e.scenes.size(); ++s)
     for (const auto& one_case : cases)
       for (const auto& combo : combos) {
@@ -173,13 +219,14 @@ std::vector<RunSpec> expand_runs(const Experiment& e) {
         run.overrides = e.set;
         run.overrides.insert(run.overrides.end(), run.parameters.begin(), run.parameters.end());
         run.bisect = e.bisect;
-        if (e.repeats == 0) plan_run(e, std::move(run), plan, ids, references);
+        run.file_digests = files.of(run);
+        if (e.repeats == 0) plan_run(e, std::move(run), plan, ids, references, files);
         // An ensemble: the repeats of one group differ only in their perturbation seed.
         for (int r = 1; r <= e.repeats; ++r) {
           RunSpec repeat = run;
           repeat.parameters.emplace_back(repeat_parameter, r);
           repeat.overrides.emplace_back(repeat_parameter, r);
-          plan_run(e, std::move(repeat), plan, ids, references);
+          plan_run(e, std::move(repeat), plan, ids, references, files);
         }
       }
   for (auto& ref : references) append_run(plan, ids, std::move(ref));

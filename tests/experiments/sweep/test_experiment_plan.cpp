@@ -70,6 +70,34 @@ TEST(ExperimentPlan, EditingTheSceneFileChangesTheRunIds) {
   }
 }
 
+// The files a scene names are part of a run's identity too: a recording or mesh edited in place
+// gives other ids (resume took the runs made with the old file), and only the edited file's
+// digest moves. A scene naming no file has no file_digests, so its runs keep their ids.
+TEST(ExperimentPlan, EditingAFileTheSceneNamesChangesItsRunIds) {
+  const fs::path dir = temp_dir("named_files");
+  write_scene(dir);
+  std::ofstream(dir / "body.obj") << "v 0 0 0\n";
+  std::ofstream(dir / "hands.jsonl") << "{}\n";
+  json source = two_by_three();
+  source["set"] = json::parse(
+      R"({"dummy": {"mesh": "body.obj", "unit": 0.01}, "input": {"recording": "hands.jsonl"}})");
+  const auto before = drape::expand_runs(parse(source, dir));
+  std::ofstream(dir / "body.obj", std::ios::app) << "v 1 0 0\n";
+  const auto after = drape::expand_runs(parse(source, dir));
+  ASSERT_EQ(before.size(), after.size());
+  for (std::size_t k = 0; k < before.size(); ++k) {
+    const json& was = before[k].file_digests;
+    const json& is = after[k].file_digests;
+    ASSERT_TRUE(was.contains("dummy.mesh") && was.contains("input.recording")) << was;
+    EXPECT_NE(was["dummy.mesh"], is["dummy.mesh"]);
+    EXPECT_EQ(was["input.recording"], is["input.recording"]);
+    EXPECT_NE(before[k].id, after[k].id);
+    EXPECT_EQ(after[k].to_json()["file_digests"], is);
+  }
+  for (const drape::RunSpec& run : drape::expand_runs(parse(two_by_three(), dir)))
+    EXPECT_FALSE(run.to_json().contains("file_digests")) << run.id;
+}
+
 // A long scene name is cut to 72 bytes at a character's start, so the id stays valid UTF-8 and
 // survives run.json (cut inside a character, resume and merge never found the run again).
 TEST(ExperimentPlan, ALongNonAsciiSceneNameIsCutAtACharacter) {
