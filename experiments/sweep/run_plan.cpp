@@ -46,15 +46,19 @@ std::string file_digest(const std::filesystem::path& file) {
   return fmt::format("{:016x}", fnv1a(bytes));
 }
 
-// The digests of the files a run's scene names (RunSpec::file_digests), each file read once per
-// plan. A scene or override that does not parse, or a file that is not a readable regular file,
+// The digests of the files a run's scene names (RunSpec::file_digests), each scene and file read
+// once per plan. A scene or override that does not parse, or a file that is not a readable regular file,
 // gives no digest: the plan's check (validate_runs) then names the field.
 class FileDigests {
  public:
   nlohmann::json of(const RunSpec& run) {
     nlohmann::json digests = nlohmann::json::object();
     try {
-      nlohmann::json scene = read_json_file(run.scene_path.string());
+      const std::string scene_file = run.scene_path.string();
+      auto known_scene = m_scenes.find(scene_file);
+      if (known_scene == m_scenes.end())
+        known_scene = m_scenes.emplace(scene_file, read_json_file(scene_file)).first;
+      nlohmann::json scene = known_scene->second;
       for (const std::string& assignment : run.assignments()) apply_override(scene, assignment);
       const std::filesystem::path base_dir = run.scene_path.parent_path();
       std::vector<std::pair<std::string, std::filesystem::path>> files;
@@ -81,6 +85,7 @@ class FileDigests {
   }
 
  private:
+  std::map<std::string, nlohmann::json> m_scenes;
   std::map<std::string, std::string> m_known;
 };
 
