@@ -132,13 +132,17 @@ def method_name(row, parameters):
 
 
 def summary_cell(r, metric, scale):
-    """One cell of a summary table: the mean in the table's unit, +- the 95 % half-width and n
-    for repeated runs, a dash for none."""
-    if not r[f"{metric}_n"]:
+    """One cell of a summary table: the mean in the table's unit, +- the 95 % half-width over
+    the runs with a value, and, for a method run more than once, their number n, "of N" when
+    some of its N runs have none (diverged, or without that event); a dash for none."""
+    count, runs = r[f"{metric}_n"], r["n"]
+    if not count:
         return "&ndash;"
     value = f"{r[f'{metric}_mean'] * scale:.3g}"
-    if r[f"{metric}_n"] > 1:
-        value += f" &plusmn; {r[f'{metric}_ci95'] * scale:.2g} (n={r[f'{metric}_n']})"
+    if count > 1:
+        value += f" &plusmn; {r[f'{metric}_ci95'] * scale:.2g}"
+    if runs > 1:
+        value += f" (n={count}" + (f" of {runs})" if count < runs else ")")
     return value
 
 
@@ -148,8 +152,11 @@ def summary_tables(rows, parameters):
     # The repeats of an ensemble differ only in their seed (docs/experiments.md, "Ensembles"):
     # one method, one row.
     parameters = [p for p in parameters if p != plots.REPEAT_PARAMETER]
+    # Only finished runs give values: a diverged run's energy rows stop before it blows up (its
+    # drift reads 0 when it diverged before the first), and its other metrics measure nothing.
     frame = pd.DataFrame([{"method": method_name(r, parameters), "scene": plots.scene_name(r),
-                           **{m: plots.number(r.get(m)) for m, *_ in SUMMARY_METRICS}} for r in rows])
+                           **{m: plots.number(r.get(m)) if r.get("status") == "ok" else math.nan
+                              for m, *_ in SUMMARY_METRICS}} for r in rows])
     if frame.empty:
         return ""
     order = list(dict.fromkeys(frame["method"]))

@@ -114,13 +114,15 @@ def frame_at(trace, t):
     return k if k >= 0 and trace["t"][-1] >= t - 1e-9 else None
 
 
-def run_frame(trace, summary, kind, occurrence, t):
+def run_frame(trace, summary, kind, occurrence):
     """The frame of an instant in one run: right after the run's own event of that type and
-    occurrence (methods reach an event at slightly different times), else at or before t."""
+    occurrence (methods reach an event at slightly different times); None when the trace ends
+    before it. Raises KeyError for a run without that event: another run's time would show
+    another instant under the event's name."""
     if kind == "end":
         return len(trace["t"]) - 1
     own = {(k, n): time for k, n, time in event_list(summary)}
-    return frame_at(trace, own.get((kind, occurrence), t))
+    return frame_at(trace, own[(kind, occurrence)])
 
 
 def methods(rows):
@@ -176,9 +178,13 @@ def scene_figures(directory, out_dir, scene, rows):
                                  figsize=(panel_w * len(runs) + 0.8, 2.0 * len(shown) + 0.6))
         for c, (row, run_summary, trace, (rows_n, cols_n)) in enumerate(runs):
             axes[0, c].set_title(method_name(row))
-            for r, (kind, occurrence, t) in enumerate(shown):
+            for r, (kind, occurrence, _) in enumerate(shown):
                 ax = axes[r, c]
-                k = run_frame(trace, run_summary, kind, occurrence, t)
+                try:
+                    k = run_frame(trace, run_summary, kind, occurrence)
+                except KeyError:
+                    style.empty_note(ax, f"no {kind.replace('_', ' ')}\nin this run")
+                    continue
                 if k is None:
                     style.empty_note(ax, f"no frame:\n{row.get('status', 'stopped')}\nat t={trace['t'][-1]:.3g} s")
                     continue

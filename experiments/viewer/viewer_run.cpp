@@ -286,7 +286,8 @@ ViewerRun read_viewer_run(const fs::path& dir) {
     return std::all_of(frame.positions.begin(), frame.positions.end(),
                        [](float x) { return std::isfinite(x); });
   };
-  while (!run.frames.empty() && !finite(run.frames.back())) run.frames.pop_back();
+  if (run.summary.value("status", "") == "diverged")
+    while (!run.frames.empty() && !finite(run.frames.back())) run.frames.pop_back();
   for (const auto& frame : run.frames)
     if (!finite(frame))
       throw InputError((dir / run.source).string(), "",

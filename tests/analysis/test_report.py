@@ -239,10 +239,38 @@ class ReportProvenanceAndViewerTest(unittest.TestCase):
     def test_summary_tables_group_the_repeats_of_an_ensemble(self):
         # Three repeats (seeds 1-3) of one method: one row, mean 2 cm +- t(0.975, 2) 1 / sqrt 3.
         rows = [{"id": f"r{k}", "scene": "scenes/s.json", "integrator": "leapfrog", "integrator.dt": 0.001,
-                 "perturbation.seed": k, "attach_error_mean": 0.01 * k} for k in (1, 2, 3)]
+                 "perturbation.seed": k, "attach_error_mean": 0.01 * k, "status": "ok"} for k in (1, 2, 3)]
         page = report.summary_tables(rows, ["integrator.dt", "perturbation.seed"])
         self.assertIn("2 &plusmn; 2.5 (n=3)", page)
         self.assertNotIn("seed=", page)
+
+    def test_summary_tables_give_diverged_runs_a_dash_and_count_the_runs_with_a_value(self):
+        # Two diverged repeats whose drift reads 0 (they blew up before their first energy row)
+        # and two finished ones of which only one held: a dash, and "n=1 of 2", not a bare mean.
+        def run(k, method, status, **metrics):
+            return {"id": f"{method}{k}", "scene": "scenes/s.json", "integrator": method,
+                    "dt": 0.002, "perturbation.seed": k, "status": status, **metrics}
+        rows = [run(1, "leapfrog", "diverged", energy_drift_max_rel=0.0, wall_seconds=1e-4),
+                run(2, "leapfrog", "diverged", energy_drift_max_rel=0.0, wall_seconds=1e-4),
+                run(1, "implicit-euler", "ok", energy_drift_max_rel=0.2, vibration_rms_after_hold=0.004),
+                run(2, "implicit-euler", "ok", energy_drift_max_rel=0.4)]
+        page = report.summary_tables(rows, ["perturbation.seed"])
+        drift = page[page.index("energy"):]
+        self.assertIn("<tr><th>leapfrog dt=0.002</th><td>&ndash;</td></tr>", drift)
+        self.assertIn("<td>0.3 &plusmn; 1.3 (n=2)</td>", drift)
+        self.assertIn("<td>4 (n=1 of 2)</td>", page)
+        self.assertNotIn("<td>0</td>", page)
+
+    def test_a_snapshot_of_an_event_is_the_runs_own_and_none_for_a_run_without_it(self):
+        # The instants come from the first run's events; a run that never held has no "hold"
+        # frame (it was drawn at the first run's hold time, under the hold's name).
+        from drapeanalysis import snapshots
+        trace = {"t": np.array([0.0, 0.5, 0.52, 1.0])}
+        held = {"events": [{"type": "hold", "t": 0.52}, {"type": "ignored", "t": 0.7}]}
+        self.assertEqual(snapshots.run_frame(trace, held, "hold", 0), 2)
+        self.assertEqual(snapshots.run_frame(trace, held, "end", 0), 3)
+        with self.assertRaises(KeyError):
+            snapshots.run_frame(trace, {"events": [{"type": "ignored", "t": 0.5}]}, "hold", 0)
 
     def test_side_by_side_pairs_leapfrog_with_an_implicit_method_at_their_smallest_steps(self):
         from drapeanalysis import viewer_pages

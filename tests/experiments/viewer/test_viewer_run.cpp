@@ -138,6 +138,20 @@ TEST(ViewerRun, FieldsAndFramesThePageCannotShowAreNamed) {
             (inf / "trace.csv").string() +
                 ": the frame at t = 0 s has a position that is not finite in single precision "
                 "(only a diverged run's last frames may)");
+  // A last frame that is not finite is left out of a diverged run's page only: in a run that
+  // finished it is damage (it was dropped silently, and the page ended a frame early).
+  const auto last = testing::tiny_run("page_nan_last");
+  testing::write_text(last / "trace.csv",
+                      "t,index,x,y,z,vx,vy,vz,fixed,contact,event\n"
+                      "0,0,0,1,0,0,0,0,1,-1,0\n0,1,0.02,1,0,0,0,0,0,-1,0\n"
+                      "0.05,0,0,1,0,0,0,0,1,-1,1\n0.05,1,nan,0.99,0.01,0,0,0,1,-1,1\n");
+  EXPECT_EQ(input_error_message([&] { read_viewer_run(last); }),
+            (last / "trace.csv").string() +
+                ": the frame at t = 0.05 s has a position that is not finite in single precision "
+                "(only a diverged run's last frames may)");
+  testing::write_text(last / "summary.json",
+                      R"({"status": "diverged", "scene": {"cloth": {"rows": 1, "cols": 2}}})");
+  EXPECT_EQ(read_viewer_run(last).frames.size(), 1u);
 }
 
 // The tiny run's summary with output.trace_interval and sim_time set (its frames: 0 and 0.05 s).
