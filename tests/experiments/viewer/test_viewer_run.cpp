@@ -129,26 +129,29 @@ TEST(ViewerRun, FieldsAndFramesThePageCannotShowAreNamed) {
   testing::write_text(dir / "summary.json",
                       R"({"status": 3, "scene": {"cloth": {"rows": 1, "cols": 2}}})");
   EXPECT_EQ(input_error_message([&] { read_viewer_run(dir); }), summary + ": status: expected a string");
-  const auto inf = testing::tiny_run("page_inf");
-  testing::write_text(inf / "trace.csv",
-                      "t,index,x,y,z,vx,vy,vz,fixed,contact,event\n"
-                      "0,0,0,1e300,0,0,0,0,1,-1,0\n0,1,0.02,1,0,0,0,0,0,-1,0\n"
-                      "0.05,0,0,1,0,0,0,0,1,-1,1\n0.05,1,0.02,0.99,0.01,0,0,0,1,-1,1\n");
-  EXPECT_EQ(input_error_message([&] { read_viewer_run(inf); }),
-            (inf / "trace.csv").string() +
-                ": the frame at t = 0 s has a position that is not finite in single precision "
-                "(only a diverged run's last frames may)");
+  // A tiny run's two frames (t = 0 and 0.05 s) with one coordinate `bad`, in the first frame's
+  // y or the last's x: view's message for it.
+  const auto with_coordinate = [](const std::string& name, const std::string& first_y,
+                                  const std::string& last_x) {
+    const auto run = testing::tiny_run(name);
+    testing::write_text(run / "trace.csv",
+                        "t,index,x,y,z,vx,vy,vz,fixed,contact,event\n0,0,0," + first_y +
+                            ",0,0,0,0,1,-1,0\n0,1,0.02,1,0,0,0,0,0,-1,0\n"
+                            "0.05,0,0,1,0,0,0,0,1,-1,1\n0.05,1," + last_x +
+                            ",0.99,0.01,0,0,0,1,-1,1\n");
+    return std::make_pair(run, input_error_message([&] { read_viewer_run(run); }));
+  };
+  const auto not_finite = [](const std::filesystem::path& run, const std::string& t) {
+    return (run / "trace.csv").string() + ": the frame at t = " + t +
+           " s has a position that is not finite in single precision (only a diverged run's "
+           "last frames may)";
+  };
+  const auto [inf, inf_message] = with_coordinate("page_inf", "1e300", "0.02");
+  EXPECT_EQ(inf_message, not_finite(inf, "0"));
   // A last frame that is not finite is left out of a diverged run's page only: in a run that
   // finished it is damage (it was dropped silently, and the page ended a frame early).
-  const auto last = testing::tiny_run("page_nan_last");
-  testing::write_text(last / "trace.csv",
-                      "t,index,x,y,z,vx,vy,vz,fixed,contact,event\n"
-                      "0,0,0,1,0,0,0,0,1,-1,0\n0,1,0.02,1,0,0,0,0,0,-1,0\n"
-                      "0.05,0,0,1,0,0,0,0,1,-1,1\n0.05,1,nan,0.99,0.01,0,0,0,1,-1,1\n");
-  EXPECT_EQ(input_error_message([&] { read_viewer_run(last); }),
-            (last / "trace.csv").string() +
-                ": the frame at t = 0.05 s has a position that is not finite in single precision "
-                "(only a diverged run's last frames may)");
+  const auto [last, last_message] = with_coordinate("page_nan_last", "1", "nan");
+  EXPECT_EQ(last_message, not_finite(last, "0.05"));
   testing::write_text(last / "summary.json",
                       R"({"status": "diverged", "scene": {"cloth": {"rows": 1, "cols": 2}}})");
   EXPECT_EQ(read_viewer_run(last).frames.size(), 1u);
