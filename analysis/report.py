@@ -338,11 +338,10 @@ def animate(directory, out_dir, rows, frames):
     return names
 
 
-def write_report(args, results, rows, windows, animated):
-    """metrics.csv, metrics.json and report/ with its figures, animations and viewer pages, and
-    report.html last. The previous report.html goes first: should a write fail, or a file only a
-    figure reads be malformed, the folder must not look finished."""
-    out_dir = args.directory / "report"
+def remove_previous_report(out_dir):
+    """The previous report.html goes before anything is read: should the experiment's files be
+    malformed, a write fail, or a file only a figure reads be bad, the folder must not look
+    finished (a report refused on bad input left the last report.html in place)."""
     if out_dir.exists() and not out_dir.is_dir():
         raise ValueError(f"{out_dir}: not a folder (the report writes its files there)")
     try:
@@ -350,6 +349,12 @@ def write_report(args, results, rows, windows, animated):
             (out_dir / "report.html").unlink()
     except OSError as e:
         raise OutputError(f"cannot remove the previous {out_dir / 'report.html'}: {e.strerror}") from e
+
+
+def write_report(args, results, rows, windows, animated):
+    """metrics.csv, metrics.json and report/ with its figures, animations and viewer pages, and
+    report.html last (remove_previous_report has removed the last one)."""
+    out_dir = args.directory / "report"
     write_metrics(args.directory, results, rows, windows)
     output_folder(out_dir)
     figures = make_figures(args.directory, out_dir, rows, results["parameters"], results.get("metrics") or ())
@@ -370,6 +375,7 @@ def main():
     try:
         if args.drapelab is not None:
             report_options.check_drapelab(args.drapelab)
+        remove_previous_report(args.directory / "report")
         results = runfiles.load_complete_experiment(args.directory)
         animated = (report_options.animated_runs(args.directory, results["runs"], args.animate)
                     if args.animate is not None else [])

@@ -256,6 +256,17 @@ class MalformedDocumentTest(ReportTestCase):
         self.report(status=2, message=f"{self.run / 'summary.json'}: events[1].t: expected a finite number, got null")
         self.assertNothingWritten()
 
+    def test_bad_input_removes_the_previous_report_page(self):
+        # Refused while reading the runs, before any figure: the last report.html stayed, and
+        # the folder looked reported on its old files.
+        (self.directory / "report").mkdir()
+        (self.directory / "report" / "report.html").write_text("a previous report")
+        summary = json.loads((self.run / "summary.json").read_text())
+        summary["events"][1]["t"] = None
+        (self.run / "summary.json").write_text(json.dumps(summary))
+        self.report(status=2, message=f"{self.run / 'summary.json'}: events[1].t")
+        self.assertNoReportPage()
+
     def test_a_cloth_grid_that_is_not_the_trace(self):
         summary = json.loads((self.run / "summary.json").read_text())
         summary["scene"]["cloth"]["rows"] = 5
