@@ -341,7 +341,10 @@ def animate(directory, out_dir, rows, frames):
 def remove_previous_report(out_dir):
     """The previous report.html goes before anything is read: should the experiment's files be
     malformed, a write fail, or a file only a figure reads be bad, the folder must not look
-    finished (a report refused on bad input left the last report.html in place)."""
+    finished (a report refused on bad input left the last report.html in place). A folder that
+    is not there (or no folder) is left to the loader, which names it."""
+    if not out_dir.parent.is_dir():
+        return
     if out_dir.exists() and not out_dir.is_dir():
         raise ValueError(f"{out_dir}: not a folder (the report writes its files there)")
     try:

@@ -12,7 +12,8 @@ CAPTIONS = {
                                 "them a horizon later (mean over the runs of each run's mean over "
                                 "its events; bars: 95 % interval over the runs).",
     "energy_by_scene": "Total energy E(t) - E(0) of every method (reference run dashed black), one "
-                       "panel per scene; dotted lines: manipulations. Driven, damped scenes do not "
+                       "panel per scene; dotted lines: the manipulations of one run (the reference's, else the first "
+                       "run's: other runs reach them at other times, or not at all). Driven, damped scenes do not "
                        "conserve energy: the methods are compared with each other.",
     "attach_error_vs_iterations": "Attach error |x - (p_o + delta n_o)| against "
                                   "manipulation.attach_iterations (paper Figure 5).",

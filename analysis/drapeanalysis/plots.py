@@ -182,7 +182,10 @@ def energy_by_scene(directory, out_dir, rows, parameters):
                 text += f" [{row.get('status')}]"
             ax.plot(energy["t"], 1e3 * (energy["total"] - energy["total"].iloc[0]), label=text, **line)
         ax.set_title(name)
-        style.mark_events(ax, event_times(directory, runs[0][0]))
+        # One run's events, labelled (every run's would bury the labels): the reference's when
+        # the scene has one, else the first run's; the caption says so.
+        marked = next((row for row, _ in runs if row.get("is_reference")), runs[0][0])
+        style.mark_events(ax, event_times(directory, marked))
         ax.set_ylabel("E(t) - E(0) [mJ]")
     style.legend_beside(axes[0, 0])
     axes[-1, 0].set_xlabel("t [s]")

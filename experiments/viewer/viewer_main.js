@@ -193,7 +193,8 @@
         }
         hash = Math.imul(hash ^ (pixels[p] | pixels[p + 1] << 8 | pixels[p + 2] << 16), 16777619) >>> 0;
       }
-      renders.push({ t: self.t, nonbackground: count, per_view: per_view, checksum: hash.toString(16) });
+      renders.push({ t: self.t, nonbackground: count, per_view: per_view, checksum: hash.toString(16),
+                     labels: self.labels.map(function (l) { return l.textContent; }) });
     });
     return { ok: true, three: THREE.REVISION, width: w, height: h, renders: renders, ui: this.ui_check(),
              milliseconds: Math.round(performance.now()),

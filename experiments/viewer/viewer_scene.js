@@ -243,7 +243,10 @@ drape.RunView.prototype.set_time = function (t) {
              position: [p[3 * r], p[3 * r + 1], p[3 * r + 2]], held: hand.held[r], candidate: hand.candidate[r] };
   });
   this.show(t, fixed ? fixed.particles : [], hands);
-  return { frame: k, frames: f.count, frame_t: times[k], ended: t > times[f.count - 1] + 1e-9 };
+  // Ended past the run's own end, not its last frame: a trace interval that does not divide the
+  // duration leaves the last frame just before it (0.999999 s of a 1 s run).
+  var end = Math.max(times[f.count - 1], this.run.sim_time);
+  return { frame: k, frames: f.count, frame_t: times[k], ended: t > end + 1e-9 };
 };
 
 // Draws this.positions with the fixed particles (pins red, others orange), the hands (each

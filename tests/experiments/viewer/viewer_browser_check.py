@@ -25,7 +25,7 @@ from pathlib import Path
 CHROMIUM_FLAGS = ["--headless=new", "--no-sandbox", "--use-angle=swiftshader",
                   "--enable-unsafe-swiftshader", "--hide-scrollbars", "--window-size=800,600",
                   "--host-resolver-rules=MAP * ~NOTFOUND"]
-TIMES = (0.1, 0.7)  # before and after the hold at about 0.4 s
+TIMES = (0.1, 0.7, 0.8)  # before and after the hold at about 0.4 s, and the end
 
 
 def fail(message):
@@ -57,7 +57,8 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)
     scene = source / "experiments" / "scenes" / "fig2_hold.json"
-    common = ["--set", "duration=0.8", "--set", "output.trace_interval=0.05"]
+    # The interval does not divide the duration: the last frame is at 0.7999992 s, before the end.
+    common = ["--set", "duration=0.8", "--set", "output.trace_interval=0.0333333"]
     run([drapelab, "run", scene, "--out", work / "leapfrog"] + common)
     run([drapelab, "run", scene, "--out", work / "implicit_euler"] + common +
         ["--set", "integrator.name=implicit-euler", "--set", "integrator.dt=0.002"])
@@ -99,6 +100,10 @@ def main():
                 fail(f"t = {r['t']}: the viewport of {name} is nearly blank ({count} pixels)")
     if renders[0]["checksum"] == renders[1]["checksum"]:
         fail(f"the pictures at t = {TIMES[0]} and {TIMES[1]} are the same")
+    # Both runs end at 0.8 s: neither has ended at the end (it read "run ended" past the last
+    # frame, which a trace interval that does not divide the duration leaves before the end).
+    if any("run ended" in label for label in renders[-1]["labels"]):
+        fail(f"t = {TIMES[-1]}: a run reads as ended at its own end: {renders[-1]['labels']}")
     ui = result["ui"]
     if abs(ui["slider_t"] - 0.2) > 1e-9 or abs(ui["played"] - 0.5) > 1e-9 or ui["camera"] != "side":
         fail("the slider, play or camera buttons do not work: " + json.dumps(ui))
