@@ -1,6 +1,7 @@
 """The report's figures in the style of style.py; each function saves PNG, SVG and PDF and
 returns the file stem, or None when the table has nothing to plot."""
 import math
+from collections import Counter
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -108,13 +109,21 @@ def energy_vs_time(directory, out_dir, rows, parameters):
     scene_colors = {name: f"C{k}" for k, name in enumerate(sorted({scene_name(r) for r in rows}))}
     for ax, (name, runs) in zip(axes[:, 0], sorted(by_integrator.items())):
         steps = step_ranks(row for row, _ in runs)
-        for row, run in runs:
+        # The repeats of an ensemble share a style and one legend entry that counts them; a
+        # run that did not finish is tagged, as its line stops where it diverged.
+        named_by = [p for p in parameters if p != REPEAT_PARAMETER]
+        texts = [label(row, named_by, INTEGRATOR_DETAIL, with_scene=scenes)
+                 + (f" [{row.get('status')}]" if row.get("status") not in (None, "ok") else "")
+                 for row, _ in runs]
+        counts, seen = Counter(texts), set()
+        for (row, run), text in zip(runs, texts):
             energy = runfiles.read_energy(run / "energy.csv")
             total = energy["total"].to_numpy()
             rel = np.abs(total - total[0]) / max(abs(total[0]), 1e-300)
+            shown = "_nolegend_" if text in seen else text + (f" ({counts[text]} runs)" if counts[text] > 1 else "")
+            seen.add(text)
             ax.plot(energy["t"], np.maximum(rel, 1e-17), lw=0.9, ls=style.LINE_STYLES[steps[step(row)] % 6],
-                    color=scene_colors[scene_name(row)],
-                    label=label(row, parameters, INTEGRATOR_DETAIL, with_scene=scenes))
+                    color=scene_colors[scene_name(row)], label=shown)
         ax.set_yscale("log")
         ax.set_ylim(bottom=1e-8)  # round-off at the first rows would squash the scale
         ax.set_title(name)
