@@ -4,11 +4,12 @@
 #include <cctype>
 #include <cstdint>
 #include <fstream>
-#include <iterator>
+#include <string_view>
 #include <map>
 #include <set>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "core/dummy/dummy_sources.hpp"
 #include "core/scene/input_error.hpp"
@@ -23,8 +24,8 @@ namespace drape {
 
 namespace {
 
-std::uint64_t fnv1a(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ULL;
+// FNV-1a of `text`, continuing from `h` (so that a file can be hashed a buffer at a time).
+std::uint64_t fnv1a(std::string_view text, std::uint64_t h = 1469598103934665603ULL) {
   for (const unsigned char ch : text) {
     h ^= ch;
     h *= 1099511628211ULL;
@@ -40,10 +41,14 @@ std::string slug_part(const nlohmann::json& value) {
   return text;
 }
 
+// Read a buffer at a time: a recording may be larger than the memory a plan should take.
 std::string file_digest(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  return fmt::format("{:016x}", fnv1a(bytes));
+  std::vector<char> buffer(std::size_t{1} << 16);
+  std::uint64_t h = fnv1a({});
+  while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0)
+    h = fnv1a({buffer.data(), static_cast<std::size_t>(in.gcount())}, h);
+  return fmt::format("{:016x}", h);
 }
 
 // The digests of the files a run's scene names (RunSpec::file_digests), each scene and file read
