@@ -112,8 +112,7 @@ def energy_vs_time(directory, out_dir, rows, parameters):
         # The repeats of an ensemble share a style and one legend entry that counts them; a
         # run that did not finish is tagged, as its line stops where it diverged.
         named_by = [p for p in parameters if p != REPEAT_PARAMETER]
-        texts = [label(row, named_by, INTEGRATOR_DETAIL, with_scene=scenes)
-                 + (f" [{row.get('status')}]" if row.get("status") not in (None, "ok") else "")
+        texts = [label(row, named_by, INTEGRATOR_DETAIL, with_scene=scenes) + status_tag(row)
                  for row, _ in runs]
         counts, seen = Counter(texts), set()
         for (row, run), text in zip(runs, texts):
@@ -136,6 +135,11 @@ def energy_vs_time(directory, out_dir, rows, parameters):
 # Integrator keys that only qualify the method (its name and step already tell it apart).
 INTEGRATOR_DETAIL = ("integrator.name", "integrator.table", "integrator.adaptive",
                      "integrator.linear_solver")
+
+
+def status_tag(row):
+    """" [diverged]" (or the other status) for a run that did not finish, "" otherwise."""
+    return f" [{row.get('status')}]" if row.get("status") not in (None, "ok") else ""
 
 
 def step(row):
@@ -186,9 +190,7 @@ def energy_by_scene(directory, out_dir, rows, parameters):
             line = (dict(c="k", lw=1.6, ls="--") if row.get("is_reference") else
                     dict(lw=1.0, c=integrator_color(row),
                          ls=style.LINE_STYLES[ranks[row.get("integrator")][step(row)] % len(style.LINE_STYLES)]))
-            text = method_label(row) + (" (reference)" if row.get("is_reference") else "")
-            if row.get("status") not in (None, "ok"):
-                text += f" [{row.get('status')}]"
+            text = method_label(row) + (" (reference)" if row.get("is_reference") else "") + status_tag(row)
             ax.plot(energy["t"], 1e3 * (energy["total"] - energy["total"].iloc[0]), label=text, **line)
         ax.set_title(name)
         # One run's events, labelled (every run's would bury the labels): the reference's when

@@ -19,11 +19,6 @@
     return options;
   }
 
-  function run_end(run) {
-    var f = run.frames, e = run.energy.t;
-    return Math.max(f.times[f.count - 1], run.sim_time, e.length ? e[e.length - 1] : 0);
-  }
-
   function Viewer(runs, options) {
     var self = this;
     this.runs = runs;
@@ -36,7 +31,7 @@
     this.renderer.setPixelRatio(window.devicePixelRatio || 1);
     this.renderer.setClearColor(this.background);
     this.views = runs.map(function (run) { return new drape.RunView(run); });
-    this.duration = Math.max.apply(null, runs.map(run_end));
+    this.duration = Math.max.apply(null, runs.map(drape.run_end));
     this.camera = new THREE.PerspectiveCamera(30, 1, 0.01, 100);
     this.controls = new THREE.OrbitControls(this.camera, this.canvas);
     this.controls.enableDamping = false;

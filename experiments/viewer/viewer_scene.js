@@ -57,6 +57,13 @@ drape.ClothScene = function (spec, positions) {
   this.set_attach_targets(spec.events);
 };
 
+// Where a recorded run ends: its last frame, its sim_time or its last energy row, the latest (a
+// trace interval that does not divide the duration leaves the last frame just before the end).
+drape.run_end = function (run) {
+  var f = run.frames, e = run.energy.t;
+  return Math.max(f.times[f.count - 1], run.sim_time, e.length ? e[e.length - 1] : 0);
+};
+
 drape.RunView = function (run) {
   var f = run.frames, n = run.rows * run.cols;
   this.quanta = new Int16Array(drape.base64_bytes(f.positions).buffer);
@@ -243,10 +250,8 @@ drape.RunView.prototype.set_time = function (t) {
              position: [p[3 * r], p[3 * r + 1], p[3 * r + 2]], held: hand.held[r], candidate: hand.candidate[r] };
   });
   this.show(t, fixed ? fixed.particles : [], hands);
-  // Ended past the run's own end, not its last frame: a trace interval that does not divide the
-  // duration leaves the last frame just before it (0.999999 s of a 1 s run).
-  var end = Math.max(times[f.count - 1], this.run.sim_time);
-  return { frame: k, frames: f.count, frame_t: times[k], ended: t > end + 1e-9 };
+  // Ended past the run's own end, not its last frame (0.999999 s of a 1 s run).
+  return { frame: k, frames: f.count, frame_t: times[k], ended: t > drape.run_end(this.run) + 1e-9 };
 };
 
 // Draws this.positions with the fixed particles (pins red, others orange), the hands (each
