@@ -13,13 +13,13 @@
 namespace drape {
 namespace {
 
-using Kernel = std::function<void(const detail::BlockSparseMatrix&, detail::GridMultigrid&,
+using Kernel = std::function<void(const detail::SymmetricBlockMatrix&, detail::GridMultigrid&,
                                   const Eigen::VectorXd&, Eigen::VectorXd&)>;
 
 // Times `kernel` on the n x n grid's matrix, its multigrid levels formed, with a random vector.
 void time_on_grid(benchmark::State& state, const Kernel& kernel) {
   const int n = static_cast<int>(state.range(0));
-  const detail::BlockSparseMatrix a = testing::grid_matrix(n, n, 1);
+  const detail::SymmetricBlockMatrix a = testing::grid_matrix(n, n, 1);
   detail::GridMultigrid multigrid;
   multigrid.build(a, n, n);
   multigrid.update(a);

@@ -20,24 +20,23 @@ std::vector<std::pair<int, double>> parents_1d(int r, int n) {
   return {{r / 2, 1.0}};  // past the last coarse node of an even-sized grid
 }
 
-Eigen::MatrixXd dense(const BlockSparseMatrix& a) {
+Eigen::MatrixXd dense(const SymmetricBlockMatrix& a) {
   const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(a.rows());
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n3, n3);
   for (int i = 0; i < a.rows(); ++i)
-    for (int k = a.row_start(i); k < a.row_start(i + 1); ++k)
-      out.block<3, 3>(3 * i, 3 * a.column(k)) = a.blocks()[static_cast<std::size_t>(k)];
+    for (int k = a.row_start(i); k < a.row_start(i + 1); ++k) {
+      const Mat3 block = unpack(a.blocks()[static_cast<std::size_t>(k)]);
+      out.block<3, 3>(3 * i, 3 * a.column(k)) = block;
+      out.block<3, 3>(3 * a.column(k), 3 * i) = block;
+    }
   return out;
 }
 
 }  // namespace
 
-void GridMultigrid::build(const BlockSparseMatrix& fine, int rows, int cols) {
+void GridMultigrid::build(const SymmetricBlockMatrix& fine, int rows, int cols) {
   m_levels.clear();
-  // update() writes each coarse block left of the diagonal as its mirror's transpose, which
-  // is P' A P only for a symmetric A (the coarse patterns are then symmetric too).
-  if (!fine.symmetric_pattern())
-    throw std::logic_error("GridMultigrid: the fine matrix needs a symmetric pattern");
-  const BlockSparseMatrix* finer = &fine;
+  const SymmetricBlockMatrix* finer = &fine;
   // Levels are held by value in a vector that grows: reserve so `finer` stays valid.
   int levels = 0;
   for (int r = rows, c = cols; r * c > coarsest_nodes; r = (r + 1) / 2, c = (c + 1) / 2) ++levels;
@@ -55,19 +54,24 @@ void GridMultigrid::build(const BlockSparseMatrix& fine, int rows, int cols) {
       level.parent_start.push_back(static_cast<int>(level.parent.size()));
     }
     // Block (i, j) of A adds weight_iI weight_jJ A_ij to block (I, J) of P^T A P for every
-    // parent I of i and J of j.
+    // parent I of i and J of j. A stored block k is both A_ij and A_ji (the same symmetric
+    // matrix), so it is visited at both positions.
     auto for_each_term = [&](auto&& add) {
+      const auto add_pair = [&](int k, int i, int j) {
+        for (int p = level.parent_start[static_cast<std::size_t>(i)];
+             p < level.parent_start[static_cast<std::size_t>(i) + 1]; ++p)
+          for (int q = level.parent_start[static_cast<std::size_t>(j)];
+               q < level.parent_start[static_cast<std::size_t>(j) + 1]; ++q)
+            add(k, level.parent[static_cast<std::size_t>(p)],
+                level.parent[static_cast<std::size_t>(q)],
+                level.weight[static_cast<std::size_t>(p)] *
+                    level.weight[static_cast<std::size_t>(q)]);
+      };
       for (int i = 0; i < finer->rows(); ++i)
         for (int k = finer->row_start(i); k < finer->row_start(i + 1); ++k) {
           const int j = finer->column(k);
-          for (int p = level.parent_start[static_cast<std::size_t>(i)];
-               p < level.parent_start[static_cast<std::size_t>(i) + 1]; ++p)
-            for (int q = level.parent_start[static_cast<std::size_t>(j)];
-                 q < level.parent_start[static_cast<std::size_t>(j) + 1]; ++q)
-              add(k, level.parent[static_cast<std::size_t>(p)],
-                  level.parent[static_cast<std::size_t>(q)],
-                  level.weight[static_cast<std::size_t>(p)] *
-                      level.weight[static_cast<std::size_t>(q)]);
+          add_pair(k, i, j);
+          if (j != i) add_pair(k, j, i);
         }
     };
     std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(coarse_rows * coarse_cols));
@@ -76,7 +80,8 @@ void GridMultigrid::build(const BlockSparseMatrix& fine, int rows, int cols) {
       if (a != b && std::find(list.begin(), list.end(), b) == list.end()) list.push_back(b);
     });
     level.matrix.set_pattern(neighbours);
-    // The terms of the blocks on and right of the diagonal, grouped by coarse block.
+    // The terms of each stored coarse block, the one at (a, b) with b >= a (the terms at
+    // (b, a) are those same terms' transposes, the same matrices).
     std::vector<std::vector<GalerkinTerm>> terms(level.matrix.blocks().size());
     for_each_term([&](int k, int a, int b, double w) {
       if (b >= a)
@@ -94,16 +99,15 @@ void GridMultigrid::build(const BlockSparseMatrix& fine, int rows, int cols) {
   }
 }
 
-void GridMultigrid::update(const BlockSparseMatrix& fine) {
-  const BlockSparseMatrix* finer = &fine;
+void GridMultigrid::update(const SymmetricBlockMatrix& fine) {
+  const SymmetricBlockMatrix* finer = &fine;
   for (Level& level : m_levels) {
-    const BlockSparseMatrix& a = level.matrix;
-    std::vector<Mat3>& coarse = level.matrix.blocks();
-    const std::vector<Mat3>& blocks = finer->blocks();
+    const SymmetricBlockMatrix& a = level.matrix;
+    std::vector<PackedBlock>& coarse = level.matrix.blocks();
+    const std::vector<PackedBlock>& blocks = finer->blocks();
     for (int i = 0; i < a.rows(); ++i) {
       for (int k = a.row_start(i); k < a.row_start(i + 1); ++k) {
-        if (a.column(k) < i) continue;  // mirrored below, once its transpose is summed
-        Mat3 sum = Mat3::Zero();
+        PackedBlock sum = PackedBlock::Zero();
         for (int t = level.galerkin_start[static_cast<std::size_t>(k)];
              t < level.galerkin_start[static_cast<std::size_t>(k) + 1]; ++t) {
           const GalerkinTerm& term = level.galerkin[static_cast<std::size_t>(t)];
@@ -111,9 +115,8 @@ void GridMultigrid::update(const BlockSparseMatrix& fine) {
                            blocks[static_cast<std::size_t>(term.fine)];
         }
         coarse[static_cast<std::size_t>(k)] = sum;
-        if (a.column(k) > i) coarse[static_cast<std::size_t>(a.transpose(k))] = sum.transpose();
       }
-      level.matrix.finish_row(i, true);  // its diagonal and right blocks are written
+      level.matrix.finish_row(i);
     }
     finer = &level.matrix;
   }
@@ -122,12 +125,12 @@ void GridMultigrid::update(const BlockSparseMatrix& fine) {
     throw std::logic_error("GridMultigrid: coarsest operator not positive definite");
 }
 
-void GridMultigrid::apply(const BlockSparseMatrix& fine, const Eigen::VectorXd& r,
+void GridMultigrid::apply(const SymmetricBlockMatrix& fine, const Eigen::VectorXd& r,
                           Eigen::VectorXd& out) {
   cycle(fine, 0, r, out);
 }
 
-void GridMultigrid::cycle(const BlockSparseMatrix& a, std::size_t next, const Eigen::VectorXd& b,
+void GridMultigrid::cycle(const SymmetricBlockMatrix& a, std::size_t next, const Eigen::VectorXd& b,
                           Eigen::VectorXd& x) {
   if (next == m_levels.size()) {
     x = m_coarsest.solve(b);
@@ -148,7 +151,7 @@ void GridMultigrid::cycle(const BlockSparseMatrix& a, std::size_t next, const Ei
          p < coarse.parent_start[static_cast<std::size_t>(i) + 1]; ++p)
       particle(x, i) += coarse.weight[static_cast<std::size_t>(p)] *
                         particle(coarse.x, coarse.parent[static_cast<std::size_t>(p)]);
-  a.backward_sweep(b, x);
+  a.backward_sweep(b, x, coarse.finer_residual);  // the residual is restricted: its storage free
 }
 
 }  // namespace drape::detail

@@ -10,17 +10,17 @@
 // neighbour). The coarse operator is Galerkin's A_c = P^T A P; bilinear P keeps the fine
 // grid's 9-point pattern (3x3 neighbours) on every coarse grid, and a wider fine pattern
 // (bending springs) stays bounded at two nodes (the pattern is built from P, not assumed).
-// Forming the coarse values is one pass through a list built once: each coarse block on or right
-// of the diagonal sums its weighted fine blocks (a gather, written once), and each block left of
-// it is the transpose of its mirror, A being symmetric (half the additions of a scatter over
-// every fine block; docs/performance.md, "Forming the coarse grids").
+// Forming the coarse values is one pass through a list built once: each stored coarse block (on
+// or right of the diagonal; A and every A_c are symmetric and stored once,
+// symmetric_block_matrix.hpp) sums its weighted fine blocks (a gather, written once;
+// docs/performance.md, "Forming the coarse grids").
 //
 // The cycle smooths with one forward block Gauss-Seidel sweep before the coarse correction and
 // one backward sweep after it, and solves the coarsest level (at most 16 nodes) by a dense
 // Cholesky factorisation. The preconditioner B is symmetric (restriction is P^T, the two sweeps
 // are each other's adjoints in the A inner product) and BA's eigenvalues lie in (0, 1] (up to
-// float's rounding: the sweeps and the residual they leave see A rounded to single precision,
-// block_sparse_matrix.hpp, while the coarse operators are formed in double): with G
+// round-off: the sweeps' diagonal blocks are the inverses of the symmetric parts of A's
+// diagonal blocks' inverses, symmetric_block_matrix.hpp): with G
 // the forward sweep's error propagation, I - BA = G* (I - P B_c P^T A) G, and by induction over
 // the grids B_c A_c has its eigenvalues in (0, 1] (at the coarsest B_c A_c = I), so
 // I - P B_c P^T A is A-positive semidefinite and I - BA too; BA's eigenvalues are positive
@@ -39,7 +39,7 @@
 #include <Eigen/Cholesky>
 #include <vector>
 
-#include "integrators/newton/block_sparse_matrix.hpp"
+#include "integrators/newton/symmetric_block_matrix.hpp"
 
 namespace drape::detail {
 
@@ -47,14 +47,12 @@ namespace drape::detail {
 class GridMultigrid {
  public:
   /// Builds the levels for `fine`, whose row i is node i of a rows x cols grid (row-major).
-  void build(const BlockSparseMatrix& fine, int rows, int cols);
-  /// Forms the coarse operators from `fine`'s current values, which must be symmetric, and
-  /// factorises the coarsest.
-  /// `fine` must have its diagonal inverted and its sweeps prepared
-  /// (BlockSparseMatrix::finish_row with sweeps).
-  void update(const BlockSparseMatrix& fine);
+  void build(const SymmetricBlockMatrix& fine, int rows, int cols);
+  /// Forms the coarse operators from `fine`'s current values and factorises the coarsest.
+  /// `fine` must have its diagonal inverted (SymmetricBlockMatrix::finish_row).
+  void update(const SymmetricBlockMatrix& fine);
   /// out = B r, B the cycle started from zero.
-  void apply(const BlockSparseMatrix& fine, const Eigen::VectorXd& r, Eigen::VectorXd& out);
+  void apply(const SymmetricBlockMatrix& fine, const Eigen::VectorXd& r, Eigen::VectorXd& out);
   /// Number of grids, the fine one included.
   int levels() const { return static_cast<int>(m_levels.size()) + 1; }
 
@@ -67,19 +65,19 @@ class GridMultigrid {
   };
   /// A grid coarser than the one before it.
   struct Level {
-    BlockSparseMatrix matrix;
+    SymmetricBlockMatrix matrix;
     // P's rows: finer node i interpolates from parent[k] with weight[k],
     // k in [parent_start[i], parent_start[i + 1]).
     std::vector<int> parent_start, parent;
     std::vector<double> weight;
-    // Coarse block k (on or right of the diagonal) sums galerkin[galerkin_start[k]] to
-    // galerkin[galerkin_start[k + 1] - 1]; a block left of the diagonal has no terms.
+    // Stored coarse block k sums galerkin[galerkin_start[k]] to
+    // galerkin[galerkin_start[k + 1] - 1].
     std::vector<GalerkinTerm> galerkin;
     std::vector<int> galerkin_start;
     Eigen::VectorXd b, x, finer_residual;
   };
 
-  void cycle(const BlockSparseMatrix& a, std::size_t next, const Eigen::VectorXd& b,
+  void cycle(const SymmetricBlockMatrix& a, std::size_t next, const Eigen::VectorXd& b,
              Eigen::VectorXd& x);
 
   std::vector<Level> m_levels;

@@ -58,16 +58,15 @@ void ReducedNewtonSolver::assemble_blocks(FinishRow finish_row) {
   const auto& fixed = m_system.constraints().mask();
   const double mass = m_system.particle_mass();
   const double g = m_gamma, g2 = m_gamma * m_gamma;
-  std::vector<Mat3>& blocks = m_matrix.blocks();
+  std::vector<detail::PackedBlock>& blocks = m_matrix.blocks();
   // K's pair pattern [-J J; J -J] puts +C_e on both diagonal blocks of S and -C_e on (i, j) and
-  // (j, i): a block right of the diagonal sums its springs, and the one left of it is the same
-  // matrix, copied from the row above (the same bits as summing the same springs again).
+  // (j, i), one stored block (symmetric_block_matrix.hpp): each block sums its springs.
   const auto coupling = [&](int k) {
-    Mat3 sum = Mat3::Zero();
+    detail::PackedBlock sum = detail::PackedBlock::Zero();
     for (int t = m_block_spring_start[static_cast<std::size_t>(k)];
          t < m_block_spring_start[static_cast<std::size_t>(k) + 1]; ++t) {
       const auto e = static_cast<std::size_t>(m_block_springs[static_cast<std::size_t>(t)]);
-      sum.noalias() += g * m_jacobian.spring_v[e] + g2 * m_jacobian.spring_x[e];
+      sum.noalias() += detail::pack(g * m_jacobian.spring_v[e] + g2 * m_jacobian.spring_x[e]);
     }
     return sum;
   };
@@ -77,19 +76,17 @@ void ReducedNewtonSolver::assemble_blocks(FinishRow finish_row) {
     if (fixed[row]) {
       // A fixed particle's row and column are dropped: its diagonal stays M and it couples to
       // nobody.
-      blocks[static_cast<std::size_t>(start)] = mass * Mat3::Identity();
+      blocks[static_cast<std::size_t>(start)] = detail::pack(mass * Mat3::Identity());
       for (int k = start + 1; k < end; ++k) blocks[static_cast<std::size_t>(k)].setZero();
     } else {
-      blocks[static_cast<std::size_t>(start)] = mass * Mat3::Identity() -
-                                                g * m_jacobian.particle_v[row] -
-                                                g2 * m_jacobian.particle_x[row] + coupling(start);
+      blocks[static_cast<std::size_t>(start)] =
+          detail::pack(mass * Mat3::Identity() - g * m_jacobian.particle_v[row] -
+                       g2 * m_jacobian.particle_x[row]) +
+          coupling(start);
       for (int k = start + 1; k < end; ++k) {
-        const int j = m_matrix.column(k);
-        Mat3& block = blocks[static_cast<std::size_t>(k)];
-        if (fixed[static_cast<std::size_t>(j)])
+        detail::PackedBlock& block = blocks[static_cast<std::size_t>(k)];
+        if (fixed[static_cast<std::size_t>(m_matrix.column(k))])
           block.setZero();
-        else if (j < i)
-          block = blocks[static_cast<std::size_t>(m_matrix.transpose(k))];
         else
           block = -coupling(k);
       }
@@ -105,13 +102,12 @@ std::vector<std::vector<int>> ReducedNewtonSolver::build_gather() {
   std::vector<std::vector<int>> neighbours =
       spring_neighbours(springs, m_system.num_particles());
   m_matrix.set_pattern(neighbours);
-  // Each spring joins its two diagonal blocks and the block right of the diagonal on its pair
-  // (the one left of it is mirrored); the lists are filled in spring order (counted, then placed).
+  // Each spring joins its two diagonal blocks and the block of its pair; the lists are filled
+  // in spring order (counted, then placed).
   const auto for_each_term = [&](auto&& term) {
     for (Eigen::Index e = 0; e < springs.size(); ++e) {
       const int i = springs.first[e], j = springs.second[e];
-      for (const int k : {m_matrix.find(i, i), m_matrix.find(j, j),
-                          m_matrix.find(std::min(i, j), std::max(i, j))})
+      for (const int k : {m_matrix.find(i, i), m_matrix.find(j, j), m_matrix.find(i, j)})
         term(static_cast<std::size_t>(k), static_cast<int>(e));
     }
   };
@@ -141,11 +137,9 @@ void ReducedNewtonSolver::form_system() {
       m_multigrid.build(m_matrix, grid.rows, grid.cols);
     }
   }
-  // Each row finished while in cache: its diagonal inverted (block Jacobi, the sweeps) and, for
-  // the multigrid, its share of the sweeps' single-precision copy. Each diagonal block is
-  // symmetric positive definite (a principal block of S).
-  const bool sweeps = m_method == ReducedSolve::multigrid_cg;
-  assemble_blocks([&](int i) { m_matrix.finish_row(i, sweeps); });
+  // Each row finished while in cache: its diagonal inverted (block Jacobi, the sweeps). Each
+  // diagonal block is symmetric positive definite (a principal block of S).
+  assemble_blocks([&](int i) { m_matrix.finish_row(i); });
   if (m_method == ReducedSolve::multigrid_cg) m_multigrid.update(m_matrix);
 }
 
@@ -190,27 +184,35 @@ void ReducedNewtonSolver::build_pattern() {
     }
   }
   outer[n3] = static_cast<int>(column_start.back());
-  // Block (p, q) of the row pattern: rows 3p.. of columns 3q.. (rank of p in column q's list).
-  m_block_slots.resize(m_matrix.blocks().size());
+  // Block (p, q): rows 3p.. of columns 3q.. (rank of p in column q's list). A stored block k
+  // at (p, q), q >= p, fills (p, q) and its mirror (q, p) (one slot on the diagonal).
+  const auto slot = [&](int p, int q) {
+    const auto& list = rows[static_cast<std::size_t>(q)];
+    const auto rank = std::lower_bound(list.begin(), list.end(), p) - list.begin();
+    return BlockSlot{column_start[static_cast<std::size_t>(q)] + 3 * rank,
+                     3 * static_cast<Eigen::Index>(list.size())};
+  };
+  m_block_slots.clear();
   for (int p = 0; p < n; ++p)
     for (int k = m_matrix.row_start(p); k < m_matrix.row_start(p + 1); ++k) {
-      const auto q = static_cast<std::size_t>(m_matrix.column(k));
-      const auto rank = std::lower_bound(rows[q].begin(), rows[q].end(), p) - rows[q].begin();
-      m_block_slots[static_cast<std::size_t>(k)] =
-          BlockSlot{column_start[q] + 3 * rank, 3 * static_cast<Eigen::Index>(rows[q].size())};
+      const int q = m_matrix.column(k);
+      m_block_slots.push_back({slot(p, q), q == p ? BlockSlot{} : slot(q, p)});
     }
   m_s.coeffs().setZero();
   m_ldlt.analyzePattern(m_s);
 }
 
 void ReducedNewtonSolver::assemble_matrix() {
-  // Every entry of the pattern is a block of the row pattern: written once, nothing zeroed.
+  // Every entry of the pattern is a stored block or its mirror: written once, nothing zeroed.
   double* values = m_s.valuePtr();
-  const std::vector<Mat3>& blocks = m_matrix.blocks();
+  const std::vector<detail::PackedBlock>& blocks = m_matrix.blocks();
   for (std::size_t k = 0; k < blocks.size(); ++k) {
-    const BlockSlot& slot = m_block_slots[k];
-    for (Eigen::Index b = 0; b < 3; ++b)
-      for (Eigen::Index a = 0; a < 3; ++a) values[slot.base + b * slot.stride + a] = blocks[k](a, b);
+    const Mat3 block = detail::unpack(blocks[k]);
+    for (const BlockSlot& slot : {m_block_slots[k].at, m_block_slots[k].mirror}) {
+      if (slot.stride == 0) continue;  // a diagonal block has no mirror
+      for (Eigen::Index b = 0; b < 3; ++b)
+        for (Eigen::Index a = 0; a < 3; ++a) values[slot.base + b * slot.stride + a] = block(a, b);
+    }
   }
 }
 

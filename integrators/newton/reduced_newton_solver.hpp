@@ -11,9 +11,10 @@
 //
 // S has the spring graph's 3x3 block sparsity, which never changes: a spring e = (i, j) with
 // Jacobian blocks K_e, D_e couples i and j through -C_e, C_e = gamma D_e + gamma^2 K_e, and adds
-// C_e to both diagonal blocks. CG keeps S by block rows (detail::BlockSparseMatrix) and
-// preconditions with its block diagonal or a multigrid cycle on the cloth grid; the
-// factorisation fills a compressed matrix whose pattern and symbolic analysis are built once.
+// C_e to both diagonal blocks. CG keeps S's diagonal and upper blocks by block rows, each
+// symmetric block packed (detail::SymmetricBlockMatrix), and preconditions with its block
+// diagonal or a multigrid cycle on the cloth grid; the factorisation fills a compressed matrix
+// whose pattern and symbolic analysis are built once.
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <array>
@@ -23,7 +24,7 @@
 
 #include "core/model/cloth_system.hpp"
 #include "integrators/newton/grid_multigrid.hpp"
-#include "integrators/newton/block_sparse_matrix.hpp"
+#include "integrators/newton/symmetric_block_matrix.hpp"
 
 namespace drape {
 
@@ -81,14 +82,18 @@ class ReducedNewtonSolver {
   struct BlockSlot {
     Eigen::Index base = 0, stride = 0;
   };
+  /// Where a stored block of m_matrix goes in m_s: at (i, j) and its mirror (j, i), whose
+  /// stride is 0 for a diagonal block.
+  struct BlockSlots {
+    BlockSlot at, mirror;
+  };
 
-  /// S's blocks from the last K, D and gamma into m_matrix, row by row (the diagonal first,
-  /// then the columns ascending), then finish_row(i). S_ii = M - gamma D_ii - gamma^2 K_ii + sum
-  /// of C_e over the springs at i, or M on a fixed particle; S_ij = -sum of C_e over the springs
-  /// on (i, j) when both ends are free, 0 otherwise (C_e = gamma D_e + gamma^2 K_e). Each block
-  /// is written once, gathered from the spring blocks it sums (or, left of the diagonal, copied
-  /// from its mirror), so S streams out in memory order (docs/performance.md, "Assembling S row
-  /// by row").
+  /// S's stored blocks from the last K, D and gamma into m_matrix, row by row (the diagonal
+  /// first, then the columns right of it ascending), then finish_row(i). S_ii = M - gamma D_ii -
+  /// gamma^2 K_ii + sum of C_e over the springs at i, or M on a fixed particle; S_ij = -sum of C_e
+  /// over the springs on (i, j) when both ends are free, 0 otherwise (C_e = gamma D_e + gamma^2
+  /// K_e). Each block is written once, gathered from the spring blocks it sums, so S streams out
+  /// in memory order (docs/performance.md, "Assembling S row by row").
   template <class FinishRow>
   void assemble_blocks(FinishRow finish_row);
   /// Sets m_matrix's pattern and the spring lists of its blocks; returns each particle's spring
@@ -96,7 +101,7 @@ class ReducedNewtonSolver {
   std::vector<std::vector<int>> build_gather();
   void form_system();
   void build_pattern();
-  /// Copies m_matrix's blocks into m_s.
+  /// Copies m_matrix's blocks and their mirrors into m_s.
   void assemble_matrix();
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out);
   /// out = K r_x + D r_v|fixed (r_v on the fixed particles, 0 elsewhere), with the unclamped
@@ -118,18 +123,18 @@ class ReducedNewtonSolver {
   bool m_has_jacobian = false;
   long m_iterations = 0;
   JacobianBlocks m_jacobian;
-  // S by block rows (detail::BlockSparseMatrix; its pattern depends on the springs alone, not
-  // on the fixed set) and, for each block k on or right of the diagonal, the springs it sums:
+  // S by block rows (detail::SymmetricBlockMatrix; its pattern depends on the springs alone,
+  // not on the fixed set) and, for each stored block k, the springs it sums:
   // block_springs[block_spring_start[k]] to block_springs[block_spring_start[k + 1] - 1] (a
   // diagonal block: the springs at i; an off-diagonal one: those on the pair).
-  detail::BlockSparseMatrix m_matrix;
+  detail::SymmetricBlockMatrix m_matrix;
   std::vector<int> m_block_spring_start, m_block_springs;
   // pcg-multigrid only: the multigrid levels.
   detail::GridMultigrid m_multigrid;
-  // sparse-direct only: S in a pattern built once (from m_matrix's blocks), where each block k
-  // of the row pattern lives, the symbolic analysis.
+  // sparse-direct only: S in a pattern built once (from m_matrix's blocks), where each stored
+  // block k lives, the symbolic analysis.
   Eigen::SparseMatrix<double> m_s;
-  std::vector<BlockSlot> m_block_slots;
+  std::vector<BlockSlots> m_block_slots;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> m_ldlt;
   Eigen::VectorXd m_b, m_z_v, m_residual, m_direction, m_preconditioned, m_product;
   // CgStart::projected: the last two such solves' z_v (newest first; empty until solved) and

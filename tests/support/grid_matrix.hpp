@@ -6,14 +6,14 @@
 #include <random>
 #include <vector>
 
-#include "integrators/newton/block_sparse_matrix.hpp"
+#include "integrators/newton/symmetric_block_matrix.hpp"
 
 namespace drape::testing {
 
 /// 0.01 I + sum over the rows x cols grid's 8-neighbour pairs of a random SPD coupling
 /// C = R R' (R's entries uniform in [-1, 1], drawn in pair order from `seed`): C on both
 /// diagonal blocks and -C off them. Its diagonal is inverted and its sweeps prepared.
-inline detail::BlockSparseMatrix grid_matrix(int rows, int cols, unsigned seed) {
+inline detail::SymmetricBlockMatrix grid_matrix(int rows, int cols, unsigned seed) {
   const int n = rows * cols;
   std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i)
@@ -23,7 +23,7 @@ inline detail::BlockSparseMatrix grid_matrix(int rows, int cols, unsigned seed) 
         if ((dr != 0 || dc != 0) && r >= 0 && r < rows && c >= 0 && c < cols)
           neighbours[static_cast<std::size_t>(i)].push_back(r * cols + c);
       }
-  detail::BlockSparseMatrix a;
+  detail::SymmetricBlockMatrix a;
   a.set_pattern(neighbours);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -32,30 +32,25 @@ inline detail::BlockSparseMatrix grid_matrix(int rows, int cols, unsigned seed) 
       if (j < i) continue;
       Mat3 r;
       for (int k = 0; k < 9; ++k) r.data()[k] = u(rng);  // column-major, as the tests drew it
-      const Mat3 c = r * r.transpose();
+      const detail::PackedBlock c = detail::pack(r * r.transpose());
       a.blocks()[static_cast<std::size_t>(a.find(i, j))] -= c;
-      a.blocks()[static_cast<std::size_t>(a.find(j, i))] -= c;
       a.blocks()[static_cast<std::size_t>(a.row_start(i))] += c;
       a.blocks()[static_cast<std::size_t>(a.row_start(j))] += c;
     }
   for (int i = 0; i < n; ++i)
-    a.blocks()[static_cast<std::size_t>(a.row_start(i))] += 0.01 * Mat3::Identity();
-  a.finish_rows(true);
+    a.blocks()[static_cast<std::size_t>(a.row_start(i))] += detail::pack(0.01 * Mat3::Identity());
+  a.finish_rows();
   return a;
 }
 
-/// The dense matrix the Gauss-Seidel sweeps of `a` (held densely) see (block_sparse_matrix.hpp):
-/// off the diagonal its blocks right of the diagonal rounded to float, with their transposes left
-/// of it, and on it the inverses of the rounded symmetric parts of the diagonal blocks' inverses.
+/// The dense matrix the Gauss-Seidel sweeps of `a` (held densely) see (symmetric_block_matrix.hpp):
+/// `a` off the diagonal, and on it the inverses of the symmetric parts of the diagonal blocks'
+/// inverses (the blocks themselves up to round-off).
 inline Eigen::MatrixXd sweep_matrix(const Eigen::MatrixXd& a) {
-  Eigen::MatrixXd upper = a.cast<float>().cast<double>();
-  for (Eigen::Index i = 0; i < a.rows() / 3; ++i)
-    upper.block(3 * i, 0, 3, 3 * i).setZero();  // the blocks left of the diagonal
-  Eigen::MatrixXd out = upper + upper.transpose();
+  Eigen::MatrixXd out = a;
   for (Eigen::Index i = 0; i < a.rows() / 3; ++i) {
     const Mat3 inverse = a.block<3, 3>(3 * i, 3 * i).inverse();
-    out.block<3, 3>(3 * i, 3 * i) =
-        (0.5 * (inverse + inverse.transpose())).cast<float>().cast<double>().inverse();
+    out.block<3, 3>(3 * i, 3 * i) = (0.5 * (inverse + inverse.transpose())).inverse();
   }
   return out;
 }

@@ -1,0 +1,125 @@
+// The symmetric block matrix against the same matrix held densely; its Gauss-Seidel sweeps
+// against the single-precision copy they read (symmetric_block_matrix.hpp).
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "integrators/newton/symmetric_block_matrix.hpp"
+#include "tests/support/grid_matrix.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace drape {
+namespace {
+
+// A 4-node chain with one long link (0, 3) (listed from both ends, from one, or both), random
+// symmetric blocks; `dense` receives the full matrix.
+detail::SymmetricBlockMatrix chain(Eigen::MatrixXd& dense) {
+  detail::SymmetricBlockMatrix a;
+  a.set_pattern({{1, 3}, {0, 2}, {}, {0}});
+  dense = Eigen::MatrixXd::Zero(12, 12);
+  const Eigen::VectorXd values =
+      testing::jitter(Eigen::VectorXd::Zero(9 * a.row_start(a.rows())), 1.0, 3);
+  for (int i = 0; i < a.rows(); ++i)
+    for (int k = a.row_start(i); k < a.row_start(i + 1); ++k) {
+      const Mat3 random = Eigen::Map<const Mat3>(values.data() + 9 * k);
+      Mat3 block = random + random.transpose();
+      // Diagonal blocks strongly dominant, so that Gauss-Seidel's inverses exist.
+      if (a.column(k) == i) block += 10.0 * Mat3::Identity();
+      a.blocks()[static_cast<std::size_t>(k)] = detail::pack(block);
+      dense.block<3, 3>(3 * i, 3 * a.column(k)) = block;
+      dense.block<3, 3>(3 * a.column(k), 3 * i) = block;
+    }
+  a.finish_rows();
+  return a;
+}
+
+TEST(SymmetricBlockMatrix, PacksTheSymmetricPartOfABlock) {
+  const Mat3 m = Eigen::Map<const Mat3>(
+      testing::jitter(Eigen::VectorXd::Zero(9), 1.0, 1).data());
+  const Mat3 symmetric = 0.5 * (m + m.transpose());
+  EXPECT_LT((detail::unpack(detail::pack(m)) - symmetric).cwiseAbs().maxCoeff(), 1e-15);
+  const Vec3 v(0.3, -1.2, 2.0);
+  EXPECT_LT((detail::times(detail::pack(m), v) - symmetric * v).norm(), 1e-15);
+  EXPECT_EQ(detail::pack(symmetric), detail::pack(symmetric.transpose().eval()));
+}
+
+TEST(SymmetricBlockMatrix, StoresEachPairOnceRightOfTheDiagonal) {
+  Eigen::MatrixXd dense;
+  const detail::SymmetricBlockMatrix a = chain(dense);
+  EXPECT_EQ(a.rows(), 4);
+  // Row 0: 0, 1, 3; row 1: 1, 2; rows 2 and 3: their diagonals.
+  EXPECT_EQ(a.row_start(4), 7);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(a.column(a.row_start(i)), i);
+  EXPECT_EQ(a.find(0, 3), 2);
+  EXPECT_EQ(a.find(3, 0), 2);
+  EXPECT_EQ(a.find(2, 1), a.find(1, 2));
+  EXPECT_EQ(a.find(0, 2), -1);
+}
+
+TEST(SymmetricBlockMatrix, ProductAndSweepsMatchTheDenseMatrix) {
+  Eigen::MatrixXd dense;
+  const detail::SymmetricBlockMatrix a = chain(dense);
+  const Eigen::VectorXd p = testing::jitter(Eigen::VectorXd::Zero(12), 1.0, 4);
+  const Eigen::VectorXd b = testing::jitter(Eigen::VectorXd::Zero(12), 1.0, 5);
+  Eigen::VectorXd out;
+  a.multiply(p, out);
+  EXPECT_LT((out - dense * p).norm(), 1e-13 * out.norm());
+
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(12, 12);
+  for (int i = 0; i < 4; ++i) d.block<3, 3>(3 * i, 3 * i) = dense.block<3, 3>(3 * i, 3 * i);
+  a.precondition_jacobi(b, out);
+  EXPECT_LT((d * out - b).norm(), 1e-13 * b.norm());
+
+  // The sweeps' matrix (testing::sweep_matrix), split by blocks: D the diagonal blocks, L and U
+  // the blocks below and above them (U = L' exactly), U the matrix's own blocks.
+  const Eigen::MatrixXd sweeps = testing::sweep_matrix(dense);
+  Eigen::MatrixXd l = Eigen::MatrixXd::Zero(12, 12), u = l;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      (i == j ? d : i > j ? l : u).block<3, 3>(3 * i, 3 * j) = sweeps.block<3, 3>(3 * i, 3 * j);
+  EXPECT_EQ(u, l.transpose());
+  Eigen::MatrixXd right = dense;
+  for (int i = 0; i < 4; ++i) right.block(3 * i, 0, 3, 3 * i + 3).setZero();
+  EXPECT_EQ(u, right);
+  // A backward sweep solves (D + U) x_new = b - L x_old; the forward one from zero
+  // (D + L) x = b, and its residual is b - (D + L + U) x.
+  Eigen::VectorXd x = p, residual, scratch;
+  a.backward_sweep(b, x, scratch);
+  EXPECT_LT(((d + u) * x - (b - l * p)).norm(), 1e-12 * b.norm());
+  a.forward_sweep_from_zero(b, x, residual);
+  EXPECT_LT(((d + l) * x - b).norm(), 1e-12 * b.norm());
+  EXPECT_LT((residual - (b - (d + l + u) * x)).norm(), 1e-12 * b.norm());
+}
+
+// The grid's 9-point pattern, where a row's blocks reach cols + 1 rows on: the product and the
+// sweeps' lagged passes against the dense matrix.
+TEST(SymmetricBlockMatrix, SweepsOnAGridMatchTheDenseMatrix) {
+  const int rows = 5, cols = 7;
+  const detail::SymmetricBlockMatrix a = testing::grid_matrix(rows, cols, 2);
+  const Eigen::Index n3 = 3 * rows * cols;
+  Eigen::MatrixXd dense(n3, n3);
+  Eigen::VectorXd column;
+  for (Eigen::Index k = 0; k < n3; ++k) {
+    a.multiply(Eigen::VectorXd::Unit(n3, k), column);
+    dense.col(k) = column;
+  }
+  EXPECT_EQ(dense, dense.transpose());
+  const Eigen::MatrixXd sweeps = testing::sweep_matrix(dense);
+  Eigen::MatrixXd lower = sweeps;  // D + L
+  for (Eigen::Index i = 0; i < rows * cols; ++i)
+    lower.block(3 * i, 3 * i + 3, 3, n3 - 3 * i - 3).setZero();
+  const Eigen::MatrixXd strict_upper = sweeps - lower;
+  const Eigen::VectorXd b = testing::jitter(Eigen::VectorXd::Zero(n3), 1.0, 6);
+  const Eigen::VectorXd old = testing::jitter(Eigen::VectorXd::Zero(n3), 1.0, 7);
+  Eigen::VectorXd x, residual, scratch;
+  a.forward_sweep_from_zero(b, x, residual);
+  EXPECT_LT((lower * x - b).norm(), 1e-12 * b.norm());
+  EXPECT_LT((residual - (b - sweeps * x)).norm(), 1e-12 * b.norm());
+  x = old;
+  a.backward_sweep(b, x, scratch);
+  const Eigen::MatrixXd upper = sweeps - strict_upper.transpose();  // D + U
+  EXPECT_LT((upper * x - (b - strict_upper.transpose() * old)).norm(), 1e-12 * b.norm());
+}
+
+}  // namespace
+}  // namespace drape
