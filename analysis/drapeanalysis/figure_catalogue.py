@@ -16,14 +16,17 @@ CAPTIONS = {
                        "run's: other runs reach them at other times, or not at all). Driven, damped scenes do not "
                        "conserve energy: the methods are compared with each other.",
     "attach_error_vs_iterations": "Attach error |x - (p_o + delta n_o)| against "
-                                  "manipulation.attach_iterations (paper Figure 5).",
+                                  "manipulation.attach_iterations (paper Figure 5); \"n of N\" beside "
+                                  "a point from only n of its N repeats.",
     "attach_error_vs_time": "The same attach error against the simulated time the attached "
                             "particle was left to settle (attach_iterations x dt).",
     "vibration_vs_dt": "Vibration: RMS motion of the free cloth particles above the run's cutoff "
                        "(between its swing and stretch frequencies, docs/analysis.md) over the last "
                        "0.5 s of the run, against the step size; one panel per scene (and collision "
                        "model), one line per integrator and the other swept values; dashed black: "
-                       "the reference run.",
+                       "the reference run. A point is the mean of a method's runs at that step with "
+                       "a value (bars: 95 % interval over repeats); \"n of N\" beside it when only n of "
+                       "its N runs have one (the others diverged).",
     "vibration_events_vs_dt": "The same, largest over the windows after each manipulation.",
     "contact_switch_vs_dt": "Changes of a particle's nearest object particle in contact per free "
                             "particle and second, last 0.5 s, against the step size.",

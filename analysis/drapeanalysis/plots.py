@@ -48,31 +48,45 @@ REPEAT_PARAMETER = "perturbation.seed"
 
 
 def with_intervals(points):
-    """(x, mean y, 95 % half-width) for each x of (x, y) points, sorted by x: the repeats of an
-    ensemble as one point (half-width 0 for a single run)."""
+    """(x, mean y, 95 % half-width, n, N) for each x of (x, y) points, sorted by x: the N repeats
+    of an ensemble as one point over its n finite values (half-width 0 for a single value); an x
+    with no finite value is left out."""
     by_x = {}
     for x, y in points:
         by_x.setdefault(x, []).append(y)
     out = []
     for x in sorted(by_x):
-        _, mean, _, half = stats.interval(by_x[x])
-        out.append((x, mean, 0.0 if math.isnan(half) else half))
+        finite = [y for y in by_x[x] if math.isfinite(y)]
+        if finite:
+            _, mean, _, half = stats.interval(finite)
+            out.append((x, mean, 0.0 if math.isnan(half) else half, len(finite), len(by_x[x])))
     return out
 
 
+def mark_partial(ax, points, color="k"):
+    """Writes "n of N" beside each point of with_intervals(points) that stands for fewer runs than
+    its ensemble had (the others diverged or wrote no value), so that a point from one of two
+    runs does not read as the ensemble's."""
+    for x, y, _, n, runs in points:
+        if n < runs:
+            ax.annotate(f"{n} of {runs}", (x, y), textcoords="offset points", xytext=(4, 4),
+                        fontsize=7, color=color)
+
+
 def series(rows, parameters, x_key, y_key, exclude=()):
-    """Points (x, mean y, 95 % half-width over the repeats) grouped by label, sorted by x, finite
-    values only. x_key may be a function of the row."""
+    """Points (x, mean y, 95 % half-width, n, N over the repeats: with_intervals) grouped by
+    label, sorted by x, means of the finite values. x_key may be a function of the row."""
     groups = {}
     scenes = several_scenes(rows)
     for row in rows:
         x = number(x_key(row) if callable(x_key) else row.get(x_key))
         y = number(row.get(y_key))
-        if math.isfinite(x) and math.isfinite(y) and not row.get("is_reference"):
+        if math.isfinite(x) and not row.get("is_reference"):
             key = label(row, parameters, ((x_key,) if isinstance(x_key, str) else ()) + tuple(exclude)
                         + (REPEAT_PARAMETER,), with_scene=scenes)
             groups.setdefault(key, []).append((x, y))
-    return {name: with_intervals(points) for name, points in groups.items()}
+    return {name: points for name, points in
+            ((name, with_intervals(points)) for name, points in groups.items()) if points}
 
 
 def line_plot(out_dir, stem, rows, parameters, x_key, y_key, xlabel, ylabel, logx=True, logy=True,
@@ -83,10 +97,11 @@ def line_plot(out_dir, stem, rows, parameters, x_key, y_key, xlabel, ylabel, log
         return None
     fig, ax = plt.subplots(figsize=(6, 4))
     for k, (name, points) in enumerate(groups.items()):
-        xs, ys, half = zip(*points)
-        ax.errorbar(xs, ys, yerr=half, label=name, capsize=3, **style.variant_style(k))
+        xs, ys, half, _, _ = zip(*points)
+        bars = ax.errorbar(xs, ys, yerr=half, label=name, capsize=3, **style.variant_style(k))
+        mark_partial(ax, points, bars.lines[0].get_color())
     ax.set_xscale("log" if logx else "linear")
-    ax.set_yscale("log" if logy and all(y > 0 for p in groups.values() for _, y, _ in p) else "linear")
+    ax.set_yscale("log" if logy and all(p[1] > 0 for ps in groups.values() for p in ps) else "linear")
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.grid(True, which="both", alpha=0.3)
@@ -310,7 +325,7 @@ def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",
         if row.get("is_reference"):  # its repeats: one line at their mean
             references.setdefault(panel, (method_label(row), []))[1].append(y)
             continue
-        if not (math.isfinite(x) and math.isfinite(y)):
+        if not math.isfinite(x):
             continue
         rest = [f"{key.split('.')[-1]}={row[key]}" for key in parameters if key in row
                 and key not in ("integrator.dt", "collision.model", REPEAT_PARAMETER) + INTEGRATOR_DETAIL
@@ -318,6 +333,12 @@ def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",
         name = ", ".join([str(row.get("integrator", "?"))] + rest)
         groups.setdefault(name, []).append((x, y))
         colors[name] = (integrator_color(row), style.INTEGRATOR_MARKERS.get(row.get("integrator"), "o"))
+    # A method's points are the means of its finite values; one with none at all is left out.
+    for groups in panels.values():
+        for name in list(groups):
+            groups[name] = with_intervals(groups[name])
+            if not groups[name]:
+                del groups[name]
     if not any(panels.values()):
         return None
     ncols = 2 if len(panels) > 1 else 1
@@ -332,11 +353,12 @@ def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",
         # Integrator by colour; the other swept values by marker and line style.
         variants = sorted({name.split(", ", 1)[-1] if ", " in name else "" for name in groups})
         for name, points in sorted(groups.items()):
-            xs, ys, half = zip(*with_intervals(points))
+            xs, ys, half, _, _ = zip(*points)
             variant = variants.index(name.split(", ", 1)[-1] if ", " in name else "")
             color, marker = colors[name]
             ax.errorbar(xs, ys, yerr=half, label=name, color=color, mfc="none", mew=1.2, capsize=3,
                         **{**style.variant_style(variant), "marker": marker})
+            mark_partial(ax, points, color)
         reference_name, reference_ys = references.get(panel, ("", []))
         reference_y = stats.interval(reference_ys)[1]
         if math.isfinite(reference_y):

@@ -261,6 +261,31 @@ class ReportProvenanceAndViewerTest(unittest.TestCase):
         self.assertIn("<td>4 (n=1 of 2)</td>", page)
         self.assertNotIn("<td>0</td>", page)
 
+    def test_a_point_from_some_of_an_ensembles_runs_says_how_many(self):
+        # Two repeats at each step: both finite at 1 ms, one diverged (no value) at 2 ms, none
+        # finite at 4 ms. The 2 ms point is the one value and says "1 of 2"; 4 ms has no point.
+        from drapeanalysis import plots
+        points = [(0.001, 1.0), (0.001, 3.0), (0.002, 5.0), (0.002, math.nan),
+                  (0.004, math.nan), (0.004, math.nan)]
+        stats = plots.with_intervals(points)
+        self.assertEqual([(x, y, n, runs) for x, y, _, n, runs in stats],
+                         [(0.001, 2.0, 2, 2), (0.002, 5.0, 1, 2)])
+        rows = [{"id": f"{k}{seed}", "scene": "scenes/s.json", "integrator": "leapfrog",
+                 "integrator.dt": x, "perturbation.seed": seed, "vibration_rms_final": y}
+                for k, (seed, (x, y)) in enumerate(zip([1, 2] * 3, points))]
+        import matplotlib.pyplot as plt
+        from unittest import mock
+        texts = []
+        real_save = plots.style.save
+        def keep_texts(fig, out_dir, stem):
+            texts.extend(t.get_text() for ax in fig.axes for t in ax.texts)
+            return real_save(fig, out_dir, stem)
+        with tempfile.TemporaryDirectory() as tmp, mock.patch.object(plots.style, "save", keep_texts):
+            self.assertEqual(plots.vibration_vs_dt(Path(tmp), rows, ["integrator.dt", "perturbation.seed"]),
+                             "vibration_vs_dt")
+            plt.close("all")
+        self.assertEqual(texts, ["1 of 2"])
+
     def test_a_snapshot_of_an_event_is_the_runs_own_and_none_for_a_run_without_it(self):
         # The instants come from the first run's events; a run that never held has no "hold"
         # frame (it was drawn at the first run's hold time, under the hold's name).
