@@ -43,6 +43,8 @@ ReducedNewtonSolver::ReducedNewtonSolver(const ClothSystem& system, ReducedSolve
       m_max_iterations(max_iterations) {}
 
 void ReducedNewtonSolver::update(ConstVecRef x, ConstVecRef v, double gamma) {
+  // The definite Jacobian: every block symmetric (the damping's non-symmetric position
+  // derivative left out), as S's packed storage takes it (symmetric_block_matrix.hpp).
   m_system.force_jacobian_blocks(x, v, true, m_split, m_jacobian);
   m_has_jacobian = true;
   set_gamma(gamma);

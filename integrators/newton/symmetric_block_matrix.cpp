@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <stdexcept>
 
 namespace drape::detail {
 
@@ -35,6 +36,8 @@ void SymmetricBlockMatrix::set_pattern(const std::vector<std::vector<int>>& neig
   std::vector<std::vector<int>> upper(n);
   for (std::size_t i = 0; i < n; ++i)
     for (const int j : neighbours[i]) {
+      if (j < 0 || static_cast<std::size_t>(j) >= n)
+        throw std::logic_error("SymmetricBlockMatrix: a neighbour outside the matrix");
       const auto low = static_cast<std::size_t>(std::min(static_cast<int>(i), j));
       const int high = std::max(static_cast<int>(i), j);
       if (static_cast<int>(low) != high) upper[low].push_back(high);

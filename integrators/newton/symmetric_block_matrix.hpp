@@ -55,8 +55,9 @@ inline Vec3 times(const PackedSymmetric<Scalar>& p, const Vec3& v) {
 /// the diagonal.
 class SymmetricBlockMatrix {
  public:
-  /// Sets the pattern: `neighbours[i]` lists columns coupled to row i (j != i; a pair may be
-  /// listed from either end or both). Every block becomes zero.
+  /// Sets the pattern: `neighbours[i]` lists columns coupled to row i (a pair may be listed
+  /// from either end or both, more than once; i itself is ignored; a column outside the matrix
+  /// throws std::logic_error). Every block becomes zero.
   void set_pattern(const std::vector<std::vector<int>>& neighbours);
   /// Number of block rows.
   int rows() const { return static_cast<int>(m_row_start.size()) - 1; }
@@ -81,7 +82,7 @@ class SymmetricBlockMatrix {
   /// One block Gauss-Seidel sweep on A x = b with rows descending:
   /// x = (D + U)^-1 (b - L x), L and U the blocks left and right of the diagonal, D^-1 the
   /// symmetric parts of the diagonal blocks' inverses. `scratch` is overwritten (L x, gathered
-  /// as the sweep goes).
+  /// as the sweep goes) and must not alias `b` or `x`.
   void backward_sweep(const Eigen::VectorXd& b, Eigen::VectorXd& x,
                       Eigen::VectorXd& scratch) const;
   /// The forward sweep (rows ascending) from x = 0, x = (D + L)^-1 b, and the residual it

@@ -75,7 +75,8 @@ class SummariseTest(unittest.TestCase):
         # x = 1: two repeats 2 and 4, mean 3, std sqrt(2), half-width t(0.975, 1) sqrt(2) / sqrt(2);
         # x = 2: one run, no interval (drawn without a bar).
         points = plots.with_intervals([(2.0, 5.0), (1.0, 2.0), (1.0, 4.0)])
-        self.assertEqual([(x, y) for x, y, _ in points], [(1.0, 3.0), (2.0, 5.0)])
+        self.assertEqual([(x, y, n, runs) for x, y, _, n, runs in points],
+                         [(1.0, 3.0, 2, 2), (2.0, 5.0, 1, 1)])
         self.assertAlmostEqual(points[0][2], 12.706205, places=5)
         self.assertEqual(points[1][2], 0.0)
 

@@ -10,15 +10,16 @@
 
 namespace drape::testing {
 
-/// 0.01 I + sum over the rows x cols grid's 8-neighbour pairs of a random SPD coupling
+/// 0.01 I + sum over the rows x cols grid's pairs of nodes at most `reach` rows and columns
+/// apart (the 8 neighbours for 1; 2 spans bending springs' pattern) of a random SPD coupling
 /// C = R R' (R's entries uniform in [-1, 1], drawn in pair order from `seed`): C on both
-/// diagonal blocks and -C off them. Its diagonal is inverted and its sweeps prepared.
-inline detail::SymmetricBlockMatrix grid_matrix(int rows, int cols, unsigned seed) {
+/// diagonal blocks and -C off them. Its diagonal is inverted.
+inline detail::SymmetricBlockMatrix grid_matrix(int rows, int cols, unsigned seed, int reach = 1) {
   const int n = rows * cols;
   std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i)
-    for (int dr = -1; dr <= 1; ++dr)
-      for (int dc = -1; dc <= 1; ++dc) {
+    for (int dr = -reach; dr <= reach; ++dr)
+      for (int dc = -reach; dc <= reach; ++dc) {
         const int r = i / cols + dr, c = i % cols + dc;
         if ((dr != 0 || dc != 0) && r >= 0 && r < rows && c >= 0 && c < cols)
           neighbours[static_cast<std::size_t>(i)].push_back(r * cols + c);

@@ -108,10 +108,14 @@ Eigen::MatrixXd reference_cycle(const Eigen::MatrixXd& a, int rows, int cols) {
 TEST(GridMultigrid, IsTheDenseBilinearVCycle) {
   // Single rows and columns, grids one coarsening above the dense size (17-20 nodes), odd and
   // even sides, non-square: levels 2 to 4.
-  const std::pair<int, int> grids[] = {{1, 17}, {17, 1}, {1, 40}, {2, 9}, {4, 5}, {2, 10},
-                                       {8, 6}, {7, 5}, {13, 11}, {16, 17}};
-  for (const auto& [rows, cols] : grids) {
-    const detail::SymmetricBlockMatrix a = grid_matrix(rows, cols, 5);
+  // Pairs up to 2 nodes apart (bending springs' reach) on the last two.
+  struct Grid {
+    int rows, cols, reach;
+  };
+  const Grid grids[] = {{1, 17, 1}, {17, 1, 1}, {1, 40, 1}, {2, 9, 1}, {4, 5, 1}, {2, 10, 1},
+                        {8, 6, 1}, {7, 5, 1}, {13, 11, 1}, {16, 17, 1}, {9, 7, 2}, {1, 30, 2}};
+  for (const auto& [rows, cols, reach] : grids) {
+    const detail::SymmetricBlockMatrix a = grid_matrix(rows, cols, 5, reach);
     detail::GridMultigrid mg;
     mg.build(a, rows, cols);
     mg.update(a);
