@@ -63,6 +63,11 @@ def with_intervals(points):
     return out
 
 
+def intervals_by_name(groups):
+    """with_intervals of each group's (x, y) points, leaving out a group with no finite value."""
+    return {name: p for name, p in ((name, with_intervals(ps)) for name, ps in groups.items()) if p}
+
+
 def mark_partial(ax, points, color="k"):
     """Writes "n of N" beside each point of with_intervals(points) that stands for fewer runs than
     its ensemble had (the others diverged or wrote no value), so that a point from one of two
@@ -85,8 +90,7 @@ def series(rows, parameters, x_key, y_key, exclude=()):
             key = label(row, parameters, ((x_key,) if isinstance(x_key, str) else ()) + tuple(exclude)
                         + (REPEAT_PARAMETER,), with_scene=scenes)
             groups.setdefault(key, []).append((x, y))
-    return {name: points for name, points in
-            ((name, with_intervals(points)) for name, points in groups.items()) if points}
+    return intervals_by_name(groups)
 
 
 def line_plot(out_dir, stem, rows, parameters, x_key, y_key, xlabel, ylabel, logx=True, logy=True,
@@ -334,11 +338,7 @@ def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",
         groups.setdefault(name, []).append((x, y))
         colors[name] = (integrator_color(row), style.INTEGRATOR_MARKERS.get(row.get("integrator"), "o"))
     # A method's points are the means of its finite values; one with none at all is left out.
-    for groups in panels.values():
-        for name in list(groups):
-            groups[name] = with_intervals(groups[name])
-            if not groups[name]:
-                del groups[name]
+    panels = {panel: intervals_by_name(groups) for panel, groups in panels.items()}
     if not any(panels.values()):
         return None
     ncols = 2 if len(panels) > 1 else 1
