@@ -1,8 +1,8 @@
 // drapelab_bench: the 1/30 s step of issue 13's implicit methods at 32 x 32, 64 x 64 and
 // 128 x 128: implicit-euler (one linearised solve, its default pcg-multigrid) and arkode-dirk
-// with the line-search Newton, SDIRK2 (ARKODE_SDIRK_2_1_2) and a third-order ESDIRK
-// (ARKODE_ESDIRK325L2SA_5_2_3), on a free swinging sheet and on the dress form with the smooth
-// contact model. See docs/performance.md.
+// with the line-search Newton, SDIRK2 (ARKODE_SDIRK_2_1_2, and Alexander's as a user table) and
+// a third-order ESDIRK (ARKODE_ESDIRK325L2SA_5_2_3), on a free swinging sheet and on the dress
+// form with the smooth contact model. See docs/performance.md.
 //
 // Each benchmark takes a few steps before timing (the first step holds the one-time setup:
 // patterns, multigrid levels, ARKODE's memory, first touch of the arrays), then times a fixed
@@ -64,15 +64,25 @@ std::unique_ptr<ClothSystem> smooth_drape(int n, Eigen::VectorXd& y) {
 struct StepCase {
   const char* label;
   const char* integrator;
-  const char* table;  // "" for none
+  const char* table;  // an ARKODE table's name, an inline user table (JSON), or "" for none
   const char* linear_solver;
   int warm_up, timed;  // steps before timing, timed steps
 };
+
+// Alexander's two-stage SDIRK (1977, SIAM J. Numer. Anal. 14(6); Hairer and Wanner, Solving
+// ODEs II, table IV.6.5 with gamma = 1 - 1/sqrt(2)): L-stable and stiffly accurate, each stage a
+// backward-Euler-like solve over gamma h = 0.29 h. ARKODE's SDIRK_2_1_2 is another method
+// (A = [1 0; -1 1], docs/integrators.md "Which tables gain energy"), each stage over h.
+constexpr const char* alexander_sdirk2 =
+    R"({"c": [0.29289321881345254, 1], "A": [[0.29289321881345254, 0],)"
+    R"( [0.70710678118654752, 0.29289321881345254]],)"
+    R"( "b": [0.70710678118654752, 0.29289321881345254], "q": 2})";
 
 const StepCase cases[] = {
     {"implicit-euler", "implicit-euler", "", "", 3, 60},
     {"sdirk2", "arkode-dirk", "ARKODE_SDIRK_2_1_2", "", 1, 3},
     {"sdirk2/pcg-multigrid", "arkode-dirk", "ARKODE_SDIRK_2_1_2", "pcg-multigrid", 1, 3},
+    {"alexander-sdirk2/pcg-multigrid", "arkode-dirk", alexander_sdirk2, "pcg-multigrid", 1, 3},
     {"esdirk3", "arkode-dirk", "ARKODE_ESDIRK325L2SA_5_2_3", "", 1, 3},
 };
 
@@ -84,7 +94,10 @@ void run_implicit_steps(benchmark::State& state, Scene scene, const StepCase& c)
   IntegratorOptions options;
   options.name = c.integrator;
   options.dt = frame;
-  options.table = c.table;
+  if (c.table[0] == '{')
+    options.user_table = nlohmann::json::parse(c.table);
+  else
+    options.table = c.table;
   options.linear_solver = c.linear_solver;
   options.nonlinear_solver = options.name == "arkode-dirk" ? "line-search" : "";
   auto method = make_integrator(options, *system);

@@ -1,6 +1,8 @@
 // Inline Butcher tables of arkode-dirk: consistency checks naming the field, and the orders of
-// backward Euler (1) and the implicit midpoint rule (2) given as user tables.
+// backward Euler (1), the implicit midpoint rule (2) and Alexander's SDIRK2 (2) given as user tables.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "integrators/arkode/butcher_tableau.hpp"
 #include "integrators/interface/integrator_options.hpp"
@@ -12,6 +14,12 @@ namespace {
 
 const nlohmann::json backward_euler = {{"c", {1.0}}, {"A", {{1.0}}}, {"b", {1.0}}};
 const nlohmann::json implicit_midpoint = {{"c", {0.5}}, {"A", {{0.5}}}, {"b", {1.0}}};
+// Alexander's SDIRK2 (1977), gamma = 1 - 1/sqrt(2): the benchmarks' alexander-sdirk2.
+const double alexander_gamma = 1.0 - 1.0 / std::sqrt(2.0);
+const nlohmann::json alexander_sdirk2 = {
+    {"c", {alexander_gamma, 1.0}},
+    {"A", {{alexander_gamma, 0.0}, {1.0 - alexander_gamma, alexander_gamma}}},
+    {"b", {1.0 - alexander_gamma, alexander_gamma}}};
 
 std::string error_of(const nlohmann::json& table) {
   return testing::input_error_message([&] { read_butcher_tableau(table, "scene.json", "integrator.table"); });
@@ -20,11 +28,10 @@ std::string error_of(const nlohmann::json& table) {
 TEST(ButcherTableau, ReadsOrdersFromTheConditions) {
   EXPECT_EQ(read_butcher_tableau(backward_euler, "f", "t").q, 1);
   EXPECT_EQ(read_butcher_tableau(implicit_midpoint, "f", "t").q, 2);
-  // SDIRK 2 (Alexander), gamma = 1 - 1/sqrt(2), with backward Euler's weights as embedding.
-  const double g = 1.0 - 1.0 / std::sqrt(2.0);
-  const ButcherTableau t = read_butcher_tableau(
-      {{"c", {g, 1.0}}, {"A", {{g, 0.0}, {1.0 - g, g}}}, {"b", {1.0 - g, g}}, {"d", {0.0, 1.0}}},
-      "f", "t");
+  // Alexander's SDIRK2 with backward Euler's weights as embedding.
+  nlohmann::json embedded = alexander_sdirk2;
+  embedded["d"] = {0.0, 1.0};
+  const ButcherTableau t = read_butcher_tableau(embedded, "f", "t");
   EXPECT_EQ(t.q, 2);
   EXPECT_EQ(t.p, 1);
 }
@@ -112,7 +119,10 @@ class UserTableOrder : public ::testing::TestWithParam<UserTableCase> {};
 
 TEST_P(UserTableOrder, FixedStepErrorHasTheTableOrder) {
   const auto [name, order, t_end, dt0] = GetParam();
-  const nlohmann::json table = std::string(name) == "backward_euler" ? backward_euler : implicit_midpoint;
+  const std::string table_name = name;
+  const nlohmann::json table = table_name == "backward_euler"      ? backward_euler
+                               : table_name == "implicit_midpoint" ? implicit_midpoint
+                                                                   : alexander_sdirk2;
   auto s = testing::pinned_test_cloth();
   const Eigen::VectorXd y0 = testing::shaken_state(*s);
   IntegratorOptions exact;
@@ -143,7 +153,8 @@ INSTANTIATE_TEST_SUITE_P(Tables, UserTableOrder,
                          // 0.05 s, and the error of the damped fast modes, not h, set the measured
                          // slope (0.67). Its asymptotic range needs h w^2 t << 1: 0.005 s from 1e-4.
                          ::testing::Values(UserTableCase{"backward_euler", 1, 0.005, 1e-4},
-                                           UserTableCase{"implicit_midpoint", 2, 0.05, 1e-3}),
+                                           UserTableCase{"implicit_midpoint", 2, 0.05, 1e-3},
+                                           UserTableCase{"alexander_sdirk2", 2, 0.05, 1e-3}),
                          [](const auto& test) { return std::string(test.param.name); });
 
 }  // namespace
