@@ -52,7 +52,8 @@ ArkodeStepper::ArkodeStepper(ClothSystem& system, ArkodeKind kind,
                       m_split.implicit_part, linear_tolerance_of(options),
                       options.max_linear_iters);
   if (m_reduced && uses_line_search(options))
-    m_line_search.emplace(system, m_split.implicit_part, *m_reduced);
+    m_line_search.emplace(system, m_split.implicit_part, *m_reduced,
+                          exact_solve_named(exact_solve_of(options)));
   // The N_Vector views m_y for the whole life of the stepper: m_y keeps this size and buffer.
   m_y = Eigen::VectorXd::Zero(system.size());
   m_y_vector = detail::wrap_vector(m_y, m_context);
@@ -263,6 +264,7 @@ ArkodeStepper::ArkodeCounts ArkodeStepper::read_counts() const {
     c.rhs_evals += m_nonlinear_solver->rhs_evals();
     c.setups = m_nonlinear_solver->setups();
     c.backtracks = m_nonlinear_solver->backtracks();
+    c.linear_iters = m_nonlinear_solver->krylov_iterations();  // CG's are added below
     return c;
   }
   check_linear(ARKStepGetNumLinIters(mem, &c.linear_iters), "ARKStepGetNumLinIters");

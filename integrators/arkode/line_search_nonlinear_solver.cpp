@@ -72,6 +72,7 @@ int LineSearchNonlinearSolver::solve(SUNNonlinearSolver solver, N_Vector predict
   me.m_backtracks += result.backtracks;
   me.m_rhs_evals += result.rhs_evals;
   me.m_setups += result.setups;
+  me.m_krylov_iterations += result.krylov_iterations;
   if (!result.converged) return SUN_NLS_CONV_RECVR;
   VecMap out = view(correction);
   out = me.m_stage - start;

@@ -36,6 +36,7 @@ class LineSearchNonlinearSolver {
   long backtracks() const { return m_backtracks; }
   long rhs_evals() const { return m_rhs_evals; }
   long setups() const { return m_setups; }
+  long krylov_iterations() const { return m_krylov_iterations; }
 
  private:
   static LineSearchNonlinearSolver& self(SUNNonlinearSolver solver);
@@ -47,7 +48,7 @@ class LineSearchNonlinearSolver {
   int m_max_iterations = 3;  // ARKODE's default until it calls setmaxiters
   // ARKODE adds these to its own totals after every solve: they describe the last one.
   long m_last_iterations = 0, m_last_failures = 0;
-  long m_backtracks = 0, m_rhs_evals = 0, m_setups = 0;
+  long m_backtracks = 0, m_rhs_evals = 0, m_setups = 0, m_krylov_iterations = 0;
   Eigen::VectorXd m_known, m_stage;
 };
 

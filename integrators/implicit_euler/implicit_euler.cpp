@@ -8,7 +8,9 @@ ImplicitEuler::ImplicitEuler(ClothSystem& system, const IntegratorOptions& optio
       m_dt(options.dt),
       m_solver(system, *reduced_solve_named(linear_solver_of(options)), ForceSplit::all,
                linear_tolerance_of(options), options.max_linear_iters) {
-  if (uses_line_search(options)) m_line_search.emplace(system, ForceSplit::all, m_solver);
+  if (uses_line_search(options))
+    m_line_search.emplace(system, ForceSplit::all, m_solver,
+                          exact_solve_named(exact_solve_of(options)));
 }
 
 double ImplicitEuler::step(double t_stop) {
@@ -62,7 +64,7 @@ void ImplicitEuler::converged_step(double t_start, double t_next) {
   const StageSolve result =
       m_line_search->solve(t_next, t_next - t_start, m_y, m_increment,
                            StageTolerance{m_weights, tolerance, max_newton_iters_of(m_options)});
-  m_counters.linear_iters += m_solver.iterations() - cg_before;
+  m_counters.linear_iters += m_solver.iterations() - cg_before + result.krylov_iterations;
   m_counters.newton_iters += result.iterations;
   m_counters.rhs_evals += result.rhs_evals;
   m_counters.jacobian_setups += result.setups;

@@ -30,6 +30,9 @@ void reject_unused_keys(const JsonReader& in, const IntegratorOptions& o) {
        "arkode-dirk, arkode-imex and implicit-euler with solve = converged"},
       {"nonlinear_solver", newton, "arkode-dirk and arkode-imex"},
       {"solve", o.name == "implicit-euler", "implicit-euler"},
+      {"exact_solve", uses_line_search(o),
+       "arkode-dirk and arkode-imex with nonlinear_solver = line-search and implicit-euler with "
+       "solve = converged"},
       {"imex_split", o.name == "arkode-imex", "arkode-imex"},
       {"max_step_halvings", (newton && !o.adaptive) || converged_euler,
        "fixed-step arkode-dirk and arkode-imex (adaptive runs shrink a failed step themselves) "
@@ -96,6 +99,14 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
   o.solve = choice("solve", o.solve);
   if (!o.solve.empty() && o.solve != "linearised" && o.solve != "converged")
     throw in.error("solve", "unknown solve '" + o.solve + "' (one of: linearised, converged)");
+  o.exact_solve = choice("exact_solve", o.exact_solve);
+  if (!o.exact_solve.empty() && o.exact_solve != "lu" && o.exact_solve != "bicgstab")
+    throw in.error("exact_solve",
+                   "unknown exact solve '" + o.exact_solve + "' (one of: lu, bicgstab)");
+  if (o.exact_solve == "bicgstab" && linear_solver_of(o) == "sparse-direct")
+    throw in.error("exact_solve",
+                   "bicgstab is preconditioned by the linear solver's preconditioner of S: it "
+                   "needs linear_solver pcg-reduced or pcg-multigrid, not sparse-direct");
   o.max_step_halvings = in.integer("max_step_halvings", o.max_step_halvings);
   if (o.max_step_halvings < 0 || o.max_step_halvings > 30)
     throw in.error("max_step_halvings", "must be between 0 and 30");
@@ -138,6 +149,10 @@ int max_newton_iters_of(const IntegratorOptions& options) {
   return uses_line_search(options) ? 400 : 10;
 }
 
+std::string exact_solve_of(const IntegratorOptions& options) {
+  return options.exact_solve.empty() ? "lu" : options.exact_solve;
+}
+
 double default_linear_tolerance(const std::string& name) {
   return name == "implicit-euler" ? 1e-3 : 1e-8;
 }
@@ -159,6 +174,7 @@ nlohmann::json to_json(const IntegratorOptions& o) {
           {"max_newton_iters", max_newton_iters_of(o)},
           {"nonlinear_solver", nonlinear_solver_of(o)},
           {"solve", o.solve},
+          {"exact_solve", uses_line_search(o) ? exact_solve_of(o) : std::string()},
           {"imex_split", o.imex_split},
           {"max_step_halvings", o.max_step_halvings},
           {"linear_tolerance", linear_tolerance_of(o)},

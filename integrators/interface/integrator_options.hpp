@@ -32,6 +32,10 @@ struct IntegratorOptions {
   /// implicit-euler: `linearised` (one Newton step, Baraff and Witkin) or `converged` (backward
   /// Euler solved by the line-search Newton); "" = linearised.
   std::string solve;
+  /// Runs whose stages the line-search Newton solves: how its local phase solves the exact
+  /// stage Jacobian, `lu` (sparse LU) or `bicgstab` (BiCGSTAB preconditioned by the linear
+  /// solver's preconditioner of S, the LU where it does not converge); "" = lu.
+  std::string exact_solve;
   /// Fixed-step ARKODE runs: how many times a step whose solve fails may be halved (0: the
   /// first failure ends the run).
   int max_step_halvings = 10;
@@ -57,6 +61,8 @@ std::string nonlinear_solver_of(const IntegratorOptions& options);
 /// Whether the run solves its stages with the line-search Newton (arkode-dirk and arkode-imex
 /// by default, implicit-euler with solve = converged).
 bool uses_line_search(const IntegratorOptions& options);
+/// `exact_solve`, or `lu` when it is empty.
+std::string exact_solve_of(const IntegratorOptions& options);
 /// `max_newton_iters`, or when 0: 10 for ARKODE's Newton, 400 for the line-search Newton
 /// (docs/integrators.md, "The iteration bound").
 int max_newton_iters_of(const IntegratorOptions& options);

@@ -71,7 +71,7 @@ void ExactStageJacobian::add_block(const BlockSlot& slot, double scale, const Ma
     for (int a = 0; a < 3; ++a) values[slot.offset[b] + a] += scale * block(a, b);
 }
 
-bool ExactStageJacobian::factorize(ConstVecRef x, ConstVecRef v, double gamma, double shift) {
+void ExactStageJacobian::form(ConstVecRef x, ConstVecRef v, double gamma, double shift) {
   if (m_diagonal.empty() || m_fixed != m_system.constraints().mask()) build_pattern();
   // A = (1 + shift) M - gamma dF/dv - gamma^2 dF/dx; spring e's blocks J enter dF as
   // [-J J; J -J] (cloth_system.hpp, JacobianBlocks), so A receives [J -J; -J J] times
@@ -95,6 +95,14 @@ bool ExactStageJacobian::factorize(ConstVecRef x, ConstVecRef v, double gamma, d
       add_block(slots[k], sign * gamma, m_blocks.spring_v[e]);
     }
   }
+}
+
+bool ExactStageJacobian::factorize(ConstVecRef x, ConstVecRef v, double gamma, double shift) {
+  form(x, v, gamma, shift);
+  return factorize();
+}
+
+bool ExactStageJacobian::factorize() {
   // The analysis runs on the first values of a pattern, not on the zeros build_pattern() left:
   // UMFPACK's symbolic phase reads the values too (its strategy and diagonal preference look at
   // which diagonal entries are nonzero), and an analysis of zeros made the 64 x 64 sheet's
@@ -111,6 +119,20 @@ void ExactStageJacobian::newton_direction(const Eigen::VectorXd& g, Eigen::Vecto
   m_rhs = -g;
   d = m_lu.solve(m_rhs);
   m_system.constraints().zero_fixed(d);
+}
+
+bool ExactStageJacobian::krylov_direction(const Eigen::VectorXd& g, Eigen::VectorXd& d,
+                                          const Preconditioner& preconditioner, double tolerance,
+                                          int max_iterations, long& iterations) {
+  m_krylov.preconditioner().apply = &preconditioner;
+  m_krylov.compute(m_a);
+  m_krylov.setTolerance(tolerance);
+  m_krylov.setMaxIterations(max_iterations);
+  m_rhs = -g;
+  d = m_krylov.solve(m_rhs);
+  m_system.constraints().zero_fixed(d);
+  iterations += m_krylov.iterations();
+  return m_krylov.info() == Eigen::Success;
 }
 
 }  // namespace drape

@@ -12,8 +12,10 @@
 // made it cycle). A is factorised by sparse LU on the free particles (fixed rows: M I): SuiteSparse's
 // UMFPACK (multifrontal, dense kernels in BLAS), 1.7x faster than Eigen's SparseLU on the 64 x 64
 // sheet's SDIRK2 step with OpenBLAS under it (docs/performance.md, "Implicit steps at 1/30 s").
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 #include <Eigen/UmfPackSupport>
+#include <functional>
 #include <vector>
 
 #include "core/model/cloth_system.hpp"
@@ -32,11 +34,25 @@ class ExactStageJacobian {
  public:
   ExactStageJacobian(const ClothSystem& system, ForceSplit split);
 
-  /// Forms and factorises A + shift M at (x, v) for `gamma`; false when it is singular. A
+  /// Applies an approximate inverse of A (zero on fixed particles): out = P r.
+  using Preconditioner = std::function<void(const Eigen::VectorXd& r, Eigen::VectorXd& out)>;
+
+  /// Forms A + shift M at (x, v) for `gamma`, for factorize() or krylov_direction(). A
   /// positive `shift` is the Levenberg-Marquardt shift of LineSearchNewton's local phase.
+  void form(ConstVecRef x, ConstVecRef v, double gamma, double shift = 0.0);
+  /// Factorises the formed matrix; false when it is singular.
+  bool factorize();
+  /// form(), then factorize().
   bool factorize(ConstVecRef x, ConstVecRef v, double gamma, double shift = 0.0);
-  /// d = -(A + shift M)^-1 g (3N, zero on fixed particles).
+  /// d = -(A + shift M)^-1 g (3N, zero on fixed particles) from the factorisation.
   void newton_direction(const Eigen::VectorXd& g, Eigen::VectorXd& d);
+  /// d ~ -(A + shift M)^-1 g of the formed matrix by BiCGSTAB (van der Vorst 1992, SIAM J. Sci.
+  /// Stat. Comput. 13(2); Eigen's, from d = 0) right-preconditioned by `preconditioner`: true
+  /// when |A d + g| <= tolerance |g| within `max_iterations` (d is the last iterate otherwise).
+  /// Adds the iterations taken to `iterations`.
+  bool krylov_direction(const Eigen::VectorXd& g, Eigen::VectorXd& d,
+                        const Preconditioner& preconditioner, double tolerance,
+                        int max_iterations, long& iterations);
 
  private:
   /// Where a 3x3 block's three columns start in m_a's values (its rows are contiguous in
@@ -59,6 +75,24 @@ class ExactStageJacobian {
   std::vector<BlockSlot> m_spring;     // four per spring: (i, i), (i, j), (j, i), (j, j)
   bool m_analysed = false;
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> m_lu;
+  /// Eigen's preconditioner concept around a Preconditioner.
+  struct KrylovPreconditioner {
+    const Preconditioner* apply = nullptr;
+    template <class Matrix>
+    KrylovPreconditioner& analyzePattern(const Matrix&) { return *this; }
+    template <class Matrix>
+    KrylovPreconditioner& factorize(const Matrix&) { return *this; }
+    template <class Matrix>
+    KrylovPreconditioner& compute(const Matrix&) { return *this; }
+    Eigen::ComputationInfo info() const { return Eigen::Success; }
+    template <class Vector>
+    Eigen::VectorXd solve(const Vector& r) const {
+      Eigen::VectorXd out;
+      (*apply)(r, out);
+      return out;
+    }
+  };
+  Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, KrylovPreconditioner> m_krylov;
   Eigen::VectorXd m_rhs;  // -g: UmfPackLU solves a stored vector, not an expression
 };
 

@@ -32,6 +32,12 @@ constexpr double min_shift = 1e-3;
 constexpr double max_shift = 1e8;
 constexpr double shift_growth = 10.0;
 constexpr double shift_decay = 3.0;
+// ExactSolve::bicgstab: BiCGSTAB iterations before the direction falls back to the LU. Most
+// local-phase systems of Alexander's SDIRK2 on the 64 x 64 sheet at 1/30 s converge in 3-15
+// iterations, a few near a buckling point take 70 to over 200; bounds of 15 and 20 kept the
+// LU's Newton path (9 iterations a step), 30 and 200 lengthened it (27 and 20), 10 factorised
+// more often (docs/performance.md, "The exact direction by BiCGSTAB").
+constexpr int max_krylov_iterations = 20;
 
 // The forcing term of an inexact Newton iteration (Eisenstat and Walker 1996, SIAM J. Sci.
 // Comput. 17(1), choice 2): CG solves S d = -g only to |g + S d| <= eta |g|, with eta = 0.9
@@ -48,9 +54,22 @@ double forcing_term(double gradient_norm, double previous_norm, double floor) {
 
 }  // namespace
 
+ExactSolve exact_solve_named(const std::string& name) {
+  return name == "bicgstab" ? ExactSolve::bicgstab : ExactSolve::lu;
+}
+
 LineSearchNewton::LineSearchNewton(const ClothSystem& system, ForceSplit split,
-                                   ReducedNewtonSolver& solver)
-    : m_system(system), m_potential(system, split), m_solver(solver), m_exact(system, split) {}
+                                   ReducedNewtonSolver& solver, ExactSolve exact_solve)
+    : m_system(system),
+      m_potential(system, split),
+      m_solver(solver),
+      m_exact(system, split),
+      m_exact_solve(exact_solve),
+      // S's preconditioner from the last global-phase iterate: A differs from S by the terms S
+      // drops, small next to M where gamma h is (docs/integrators.md, "Newton direction").
+      m_precondition([this](const Eigen::VectorXd& r, Eigen::VectorXd& out) {
+        m_solver.precondition(r, out);
+      }) {}
 
 StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef z,
                                    const StageTolerance& stop) {
@@ -77,7 +96,8 @@ StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef
     double slope = 0.0;
     bool exact = false;
     const double gradient_norm = m_gradient.norm();
-    if (local) exact = shifted_exact_direction(z, gamma, shift, slope, result);
+    const double forcing = forcing_term(gradient_norm, previous_gradient_norm, m_solver.tolerance());
+    if (local) exact = shifted_exact_direction(z, gamma, forcing, shift, slope, result);
     if (exact) {
       m_step.tail(n3) = m_direction;
     } else {
@@ -86,8 +106,7 @@ StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef
       m_solver.update(z.head(n3), z.tail(n3), gamma);
       ++result.setups;
       m_rhs.tail(n3) = -m_gradient / mass;
-      m_solver.solve(m_rhs, m_step, CgStart::zero,
-                     forcing_term(gradient_norm, previous_gradient_norm, m_solver.tolerance()));
+      m_solver.solve(m_rhs, m_step, CgStart::zero, forcing);
       slope = m_gradient.dot(m_step.tail(n3));
       if (!(slope < 0.0)) {
         // An unconverged CG may return no descent direction: fall back to steepest descent in
@@ -137,13 +156,18 @@ StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef
   return result;
 }
 
-bool LineSearchNewton::shifted_exact_direction(ConstVecRef z, double gamma, double& shift,
-                                               double& slope, StageSolve& result) {
+bool LineSearchNewton::shifted_exact_direction(ConstVecRef z, double gamma, double forcing,
+                                               double& shift, double& slope, StageSolve& result) {
   const Eigen::Index n3 = z.size() / 2;
   for (;;) {
     ++result.setups;
-    if (m_exact.factorize(z.head(n3), z.tail(n3), gamma, shift)) {
-      m_exact.newton_direction(m_gradient, m_direction);
+    m_exact.form(z.head(n3), z.tail(n3), gamma, shift);
+    const bool solved =
+        (m_exact_solve == ExactSolve::bicgstab &&
+         m_exact.krylov_direction(m_gradient, m_direction, m_precondition, forcing,
+                                  max_krylov_iterations, result.krylov_iterations)) ||
+        (m_exact.factorize() && (m_exact.newton_direction(m_gradient, m_direction), true));
+    if (solved) {
       slope = m_gradient.dot(m_direction);
       if (slope < 0.0) {
         if (shift > 0.0) ++result.shifted_directions;

@@ -12,10 +12,14 @@
 // descend; there A + shift M is factorised instead, the shift of Levenberg and Marquardt grown
 // until the direction descends (a trust-region step that follows A's negative curvature, where
 // S treats it as zero curvature and creeps: docs/integrators.md, "What the failing stages look
-// like"). The stage is solved when the update's weighted RMS norm (ARKODE's error
-// weights) times rate / (1 - rate), the error it leaves at the observed rate, is at most
-// `tolerance` (ARKODE's test, arkStep_NlsConvTest, with that factor for min(rate, 1)).
+// like"). The local phase's systems are factorised (sparse LU) or, with ExactSolve::bicgstab,
+// solved by BiCGSTAB preconditioned by S's preconditioner to the same forcing term as CG on S,
+// the LU taking over where BiCGSTAB does not converge. The stage is solved when the update's
+// weighted RMS norm (ARKODE's error weights) times rate / (1 - rate), the error it leaves at the
+// observed rate, is at most `tolerance` (ARKODE's test, arkStep_NlsConvTest, with that factor
+// for min(rate, 1)).
 #include <Eigen/Core>
+#include <string>
 
 #include "core/model/cloth_system.hpp"
 #include "integrators/newton/exact_stage_jacobian.hpp"
@@ -37,7 +41,18 @@ struct StageSolve {
   /// Directions from A + shift M with a positive Levenberg-Marquardt shift (A's own did not
   /// descend, or the last one needed backtracking).
   int shifted_directions = 0;
+  long krylov_iterations = 0;  ///< BiCGSTAB iterations (ExactSolve::bicgstab)
 };
+
+/// How the local phase solves (A + shift M) d = -g (`integrator.exact_solve`).
+enum class ExactSolve {
+  lu,        ///< UMFPACK's sparse LU, every local iteration (the default)
+  bicgstab,  ///< BiCGSTAB preconditioned by S's preconditioner, to the forcing term; the LU
+             ///< where it does not get there in max_krylov_iterations
+};
+
+/// `lu` or `bicgstab` (validated by read_integrator_options).
+ExactSolve exact_solve_named(const std::string& name);
 
 /// How a stage solve stops.
 struct StageTolerance {
@@ -50,7 +65,11 @@ struct StageTolerance {
 class LineSearchNewton {
  public:
   /// `solver` solves with the Hessian S (its split must be `split`).
-  LineSearchNewton(const ClothSystem& system, ForceSplit split, ReducedNewtonSolver& solver);
+  LineSearchNewton(const ClothSystem& system, ForceSplit split, ReducedNewtonSolver& solver,
+                   ExactSolve exact_solve = ExactSolve::lu);
+  // m_precondition calls this object's solver: a copy would call the original's.
+  LineSearchNewton(const LineSearchNewton&) = delete;
+  LineSearchNewton& operator=(const LineSearchNewton&) = delete;
 
   /// Solves z = a + gamma f_I(t, z) starting from the guess z (6N), which receives the solution
   /// (the last iterate when not converged).
@@ -61,8 +80,8 @@ class LineSearchNewton {
   /// The direction d = -(A + shift M)^-1 g in m_direction and its slope g.d, with the smallest
   /// shift from `shift` up (tenfold steps) whose factorisation succeeds and whose direction
   /// descends on E_k; `shift` receives it. False when even the largest shift does not.
-  bool shifted_exact_direction(ConstVecRef z, double gamma, double& shift, double& slope,
-                               StageSolve& result);
+  bool shifted_exact_direction(ConstVecRef z, double gamma, double forcing, double& shift,
+                               double& slope, StageSolve& result);
   /// Armijo backtracking from z along d; false when 30 halvings found no decrease.
   bool line_search(VecRef z, double slope, StageSolve& result);
 
@@ -70,6 +89,8 @@ class LineSearchNewton {
   IncrementalPotential m_potential;
   ReducedNewtonSolver& m_solver;
   ExactStageJacobian m_exact;
+  ExactSolve m_exact_solve;
+  ExactStageJacobian::Preconditioner m_precondition;
   Eigen::VectorXd m_gradient, m_rhs, m_step, m_v, m_trial, m_direction;
 };
 

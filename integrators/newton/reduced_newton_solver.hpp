@@ -72,6 +72,8 @@ class ReducedNewtonSolver {
   /// then its last iterate). CG stops at the relative residual `tolerance`, or at the one given
   /// to the constructor when it is 0 (an inexact Newton's forcing term, line_search_newton.hpp).
   bool solve(ConstVecRef r, VecRef z, CgStart start = CgStart::zero, double tolerance = 0.0);
+  /// out = P r, CG's preconditioner of the last S (zero on fixed particles).
+  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out);
   /// CG's relative residual given to the constructor.
   double tolerance() const { return m_tolerance; }
   /// CG iterations over all solves so far (0 for the direct solve).
@@ -103,7 +105,6 @@ class ReducedNewtonSolver {
   void build_pattern();
   /// Copies m_matrix's blocks and their mirrors into m_s.
   void assemble_matrix();
-  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& out);
   /// out = K r_x + D r_v|fixed (r_v on the fixed particles, 0 elsewhere), with the unclamped
   /// columns of fixed particles (rows not zeroed).
   void jacobian_times(ConstVecRef r_x, ConstVecRef r_v, Eigen::VectorXd& out) const;

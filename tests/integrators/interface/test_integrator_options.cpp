@@ -88,6 +88,9 @@ TEST(IntegratorOptions, KeysTheIntegratorDoesNotReadAreRejected) {
        "linear_tolerance"},
       {{{"name", "arkode-erk"}, {"dt", 1e-4}, {"max_linear_iters", 9}}, "max_linear_iters"},
       {{{"name", "arkode-dirk"}, {"dt", 1e-3}, {"imex_split", "springs"}}, "imex_split"},
+      {{{"name", "implicit-euler"}, {"dt", 1e-2}, {"exact_solve", "lu"}}, "exact_solve"},
+      {{{"name", "arkode-dirk"}, {"dt", 1e-3}, {"nonlinear_solver", "newton"}, {"exact_solve", "lu"}},
+       "exact_solve"},
   };
   for (const auto& u : unused) {
     const std::string prefix = "scene.json: integrator." + std::string(u.key) +
@@ -111,6 +114,30 @@ TEST(IntegratorOptions, KeysAreAcceptedWhereTheyAreRead) {
   };
   for (const nlohmann::json& options : used)
     EXPECT_EQ(error_of(options), "no error") << options.dump();
+}
+
+// The line search's local phase: a sparse LU (the default) or BiCGSTAB, which needs a
+// preconditioner of S.
+TEST(IntegratorOptions, ExactSolveIsLuOrBicgstabWithAPreconditioner) {
+  const nlohmann::json dirk = {{"name", "arkode-dirk"}, {"dt", 1e-3}};
+  EXPECT_EQ(to_json(read_integrator_options(dirk, "f", "integrator")).at("exact_solve"), "lu");
+  nlohmann::json o = dirk;
+  o["exact_solve"] = "bicgstab";
+  EXPECT_EQ(read_integrator_options(o, "f", "integrator").exact_solve, "bicgstab");
+  o["exact_solve"] = "gmres";
+  EXPECT_EQ(error_of(o), "scene.json: integrator.exact_solve: unknown exact solve 'gmres' (one of: "
+                         "lu, bicgstab)");
+  o["exact_solve"] = "bicgstab";
+  o["linear_solver"] = "sparse-direct";
+  EXPECT_EQ(error_of(o).rfind("scene.json: integrator.exact_solve: bicgstab is preconditioned", 0),
+            0u)
+      << error_of(o);
+  EXPECT_EQ(error_of({{"name", "implicit-euler"}, {"dt", 1e-2}, {"solve", "converged"},
+                      {"exact_solve", "bicgstab"}}),
+            "no error");
+  EXPECT_EQ(to_json(read_integrator_options({{"name", "leapfrog"}, {"dt", 1e-4}}, "f", "integrator"))
+                .at("exact_solve"),
+            "");
 }
 
 // arkode-imex's split names the forces on the implicit side: two choices, anything else named.

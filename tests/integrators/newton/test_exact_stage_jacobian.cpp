@@ -73,6 +73,42 @@ TEST(ExactStageJacobian, NewtonDirectionSolvesTheLinearisedStageInContact) {
   }
 }
 
+// BiCGSTAB on the formed matrix reaches the LU's direction at a tight tolerance (any
+// preconditioner: here M^-1), and says so; within too few iterations it reports failure (the
+// line search then factorises) and counts what it took.
+TEST(ExactStageJacobian, KrylovDirectionMatchesTheFactorisedOne) {
+  auto system = testing::pinned_test_cloth(0.05, 0.01);
+  const Eigen::VectorXd a = testing::jitter(system->initial_state(0.0), 0.004, 3);
+  const Eigen::Index n3 = a.size() / 2;
+  IncrementalPotential potential(*system, ForceSplit::all);
+  const double gamma = 0.02;
+  Eigen::VectorXd z = a;
+  potential.begin_stage(0.0, gamma, a, z);
+  potential.state_of(testing::jitter(z.tail(n3), 0.5, 4), z);
+  Eigen::VectorXd g(n3), lu, krylov;
+  potential.gradient(z, g);
+  ExactStageJacobian jacobian(*system, ForceSplit::all);
+  for (const double shift : {0.0, 0.7}) {
+    ASSERT_TRUE(jacobian.factorize(z.head(n3), z.tail(n3), gamma, shift));
+    jacobian.newton_direction(g, lu);
+    const double mass = system->particle_mass();
+    const ExactStageJacobian::Preconditioner inverse_mass =
+        [&](const Eigen::VectorXd& r, Eigen::VectorXd& out) {
+          out = r / mass;
+          system->constraints().zero_fixed(out);
+        };
+    long iterations = 0;
+    ASSERT_TRUE(jacobian.krylov_direction(g, krylov, inverse_mass, 1e-12, 1000, iterations));
+    EXPECT_GT(iterations, 1);
+    EXPECT_LT((krylov - lu).norm(), 1e-8 * lu.norm()) << "shift " << shift;
+    for (const int i : system->constraints().fixed_particles())
+      EXPECT_EQ(krylov.segment<3>(3 * i), Eigen::Vector3d::Zero());
+    long bounded = 0;
+    EXPECT_FALSE(jacobian.krylov_direction(g, krylov, inverse_mass, 1e-12, 1, bounded));
+    EXPECT_EQ(bounded, 1);
+  }
+}
+
 TEST(ExactStageJacobian, FollowsAChangeOfTheFixedSet) {
   // The pattern (and UMFPACK's analysis) is built for one fixed set; pinning a free particle
   // and releasing a pinned one must rebuild it, or the direction would move the new pin.
