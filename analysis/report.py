@@ -65,7 +65,7 @@ SUMMARY_METRICS = (
     ("short_error_events", "RMS error against the reference 1/30 s after the events", "mm", 1e3),
     ("error_rms", "RMS error of the final positions against the reference", "mm", 1e3),
     ("attach_error_mean", "Attach error (distance from p_o + delta n_o)", "cm", 1e2),
-    ("energy_drift_max_rel", "Largest relative energy error", "1", 1.0),
+    ("energy_drift_max_rel", "Largest relative energy change from the start (manipulations and damping included)", "1", 1.0),
     ("wall_seconds", "Wall time", "s", 1.0),
 )
 
@@ -291,16 +291,16 @@ def make_figures(directory, out_dir, rows, parameters, shown=()):
 def write_html(out_dir, results, rows, figures, videos=(), pages=None):
     """report.html: the question, the provenance, the method x scene summary, the viewer pages
     (`pages` from viewer_pages.write_pages, None when not written), the figures (PNG, linked to
-    SVG and PDF, snapshots to their scene's viewer page), animations, and the full table folded
-    away."""
+    SVG and PDF, snapshots to their scene's viewer page), animations, the full table folded away."""
     parts = [f"<h1>{html.escape(results['name'])}</h1>",
              f"<p><b>Question.</b> {html.escape(results.get('question') or '')}</p>",
              provenance_html(rows)]
     scene_pages = pages[2] if pages else {}
     summary = summary_tables(rows, results["parameters"])
     if summary:
-        parts.append("<h2>Summary</h2><p>Method x scene; a dash: no value (the run diverged, or "
-                     "the metric does not apply).</p>" + summary)
+        parts.append("<h2>Summary</h2><p>Method x scene: mean &plusmn; 95 % half-width over the n runs with a value; "
+                     "a dash: none has one (diverged, the metric does not apply, or its event did not "
+                     "happen, such as an attach not fixed by the run's end).</p>" + summary)
     parts.append(viewer_html(rows, results["parameters"], pages))
     parts.append("<h2>Figures</h2>")
     for stem, caption in figures:

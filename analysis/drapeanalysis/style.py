@@ -102,12 +102,16 @@ def place_labels(ax, points, texts, color):
     boxes = ax._drape_boxes
     screen = [tuple(ax.transData.transform(p)) for p in points]
     boxes += [(x - gap, y - gap, x + gap, y + gap) for x, y in screen]
+    frame = ax.get_window_extent().extents  # a label outside the axes would cover the ticks
+
+    def cost(box):
+        return sum(_overlap(box, b) for b in boxes) + 4 * ((box[2] - box[0]) * (box[3] - box[1]) - _overlap(box, frame))
+
     for (x, y), (px, py), text in zip(points, screen, texts):
         w = char * len(text)
         spots = [(gap, -height / 2), (-gap - w, -height / 2), (-w / 2, gap), (-w / 2, -gap - height),
                  (gap, gap), (gap, -gap - height), (-gap - w, gap), (-gap - w, -gap - height)]
-        dx, dy = min(spots, key=lambda d: sum(_overlap((px + d[0], py + d[1], px + d[0] + w, py + d[1] + height), b)
-                                             for b in boxes))
+        dx, dy = min(spots, key=lambda d: cost((px + d[0], py + d[1], px + d[0] + w, py + d[1] + height)))
         boxes.append((px + dx, py + dy, px + dx + w, py + dy + height))
         ax.annotate(text, (x, y), xytext=(dx, dy), textcoords="offset pixels", fontsize=MIN_FONT,
                     color=color, va="bottom", ha="left")

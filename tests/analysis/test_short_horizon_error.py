@@ -45,6 +45,15 @@ class ShortHorizonErrorTest(RunFolderTest):
         self.assertClose(out["short_error_events"], e(0.233), rel=1e-6)
         self.assertEqual(out["short_error_events_n"], 1)
 
+    def test_events_at_the_same_instant_up_to_round_off_are_shared(self):
+        # A 2e-5 s reference reaches a key at 1.5 s as 1.4999999999977245 s (its steps' sum).
+        run = self.write("a", [{"t": 0.2, "type": "release", "hand": "left"}], 0.0)
+        reference = self.write("ref", [{"t": 0.2 - 2.3e-12, "type": "release", "hand": "left"}],
+                               DRIFT)
+        out = metrics.short_horizon_error(run, reference)
+        self.assertEqual(out["short_error_events_n"], 1)
+        self.assertClose(out["short_error_events"], DRIFT * 0.233 / math.sqrt(2.0), rel=1e-6)
+
     def test_identical_runs_have_no_error_and_missing_traces_give_nothing(self):
         hold = [{"t": 0.2, "type": "hold", "hand": "left"}]
         run, reference = self.write("a", hold, DRIFT), self.write("ref", hold, DRIFT)
