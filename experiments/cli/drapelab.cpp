@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <csignal>
 #include <iostream>
+#include <optional>
+
+#include <unistd.h>
 
 #include "core/scene/input_error.hpp"
 #include "core/input/recording.hpp"
@@ -17,6 +20,7 @@
 #include "experiments/cli/run_stats.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_files.hpp"
+#include "experiments/cli/run_progress_display.hpp"
 #include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "experiments/viewer/view_command.hpp"
@@ -27,9 +31,14 @@ namespace {
 int run_command(const std::string& scene_file, const std::string& out_dir,
                 const std::vector<std::string>& overrides, bool quiet, bool overwrite) {
   drape::check_run_folder(out_dir, overwrite);  // before anything is read or built
+  // Progress only where a person watches (a terminal, not --quiet), from when the scene is read.
+  std::optional<drape::RunProgressDisplay> progress;
   const drape::RunOutcome outcome = drape::with_command_line_overrides(
-      scene_file, overrides,
-      [&](const drape::Scene& scene) { return drape::run_scene(scene, out_dir); });
+      scene_file, overrides, [&](const drape::Scene& scene) {
+        if (!quiet && ::isatty(2) != 0) progress.emplace(scene_file, std::cerr);
+        return drape::run_scene(scene, out_dir, progress ? &*progress : nullptr);
+      });
+  if (progress) progress->finish(outcome.status);
   if (outcome.status != "ok")
     std::cerr << fmt::format("drapelab: {}: {} at t = {:.6g} s: {}\n", scene_file, outcome.status,
                              outcome.summary.value("time", 0.0), outcome.reason);
