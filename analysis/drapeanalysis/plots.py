@@ -206,11 +206,12 @@ def energy_by_scene(directory, out_dir, rows, parameters):
         ranks = {key: step_ranks(group) for key, group in ranks.items()}
         for row, run in runs:
             energy = runfiles.read_energy(run / "energy.csv")
-            line = (dict(c="k", lw=1.6, ls="--") if row.get("is_reference") else
+            line = (dict(c="k", lw=1.4, ls="--", alpha=0.6, zorder=1) if row.get("is_reference") else
                     dict(lw=1.0, c=integrator_color(row),
                          ls=style.LINE_STYLES[ranks[row.get("integrator")][step(row)] % len(style.LINE_STYLES)]))
             text = method_label(row) + (" (reference)" if row.get("is_reference") else "") + status_tag(row)
-            ax.plot(energy["t"], 1e3 * (energy["total"] - energy["total"].iloc[0]), label=text, **line)
+            ax.plot(energy["t"], 1e3 * (energy["total"] - energy["total"].iloc[0]), **line,  # a repeat: no new legend entry
+                    label=text if text not in ax.get_legend_handles_labels()[1] else "_nolegend_")
         ax.set_title(name)
         # One run's events, labelled (every run's would bury the labels): the reference's when
         # the scene has one, else the first run's; the caption says so.
