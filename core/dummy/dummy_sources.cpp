@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <utility>
 
 #include "core/dummy/dress_form.hpp"
@@ -203,7 +204,14 @@ void make_dummy_paths_absolute(nlohmann::json& spec, const std::filesystem::path
 
 Dummy make_dummy(const nlohmann::json& spec, const std::string& file, const std::string& path,
                  const std::filesystem::path& base_dir) {
-  return Dummy(make_dummy_sections(spec, file, path, base_dir));
+  DummySections sections = make_dummy_sections(spec, file, path, base_dir);
+  try {
+    return Dummy(std::move(sections));
+  } catch (const std::invalid_argument& e) {
+    // Sections the spec's checks passed but resampling made invalid (heights a rounding error
+    // apart become equal): still the spec's fault.
+    throw InputError(file, path, std::string(e.what()) + " (after resampling the dummy's sections)");
+  }
 }
 
 DummySections cylinder_sections(double radius, double cx, double cz, double y_top,

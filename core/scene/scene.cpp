@@ -170,6 +170,7 @@ ManipulationParams read_manipulation(JsonReader in, const ClothParams& cloth) {
   m.attach_iterations = in.integer("attach_iterations", m.attach_iterations);
   if (m.attach_iterations < 0) throw in.error("attach_iterations", "must not be negative");
   m.hold_ramp = in.non_negative("hold_ramp", in.number("hold_ramp", m.hold_ramp));
+  in.at_most("hold_ramp", m.hold_ramp, limits::max_duration);
   m.attach_at_contact_distance =
       in.boolean("attach_at_contact_distance", m.attach_at_contact_distance);
   m.map_top = in.number("map_top", m.map_top);
@@ -358,6 +359,8 @@ void check_distinct_overrides(const std::vector<std::string>& overrides) {
 
 Scene load_scene(const std::string& file, const std::vector<std::string>& overrides) {
   nlohmann::json source = read_json_file(file);
+  // A file that is no object is the file's fault, before any --set finds it not an object.
+  JsonReader{source, file, ""};
   for (const auto& assignment : overrides) apply_override(source, assignment);
   return parse_scene(source, file, std::filesystem::path(file).parent_path());
 }

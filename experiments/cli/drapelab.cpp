@@ -31,6 +31,7 @@ namespace {
 int run_command(const std::string& scene_file, const std::string& out_dir,
                 const std::vector<std::string>& overrides, bool quiet, bool overwrite) {
   drape::check_run_folder(out_dir, overwrite);  // before anything is read or built
+  drape::check_run_folder_not_experiment(out_dir);
   // Progress only where a person watches (a terminal, not --quiet), from when the scene is read.
   std::optional<drape::RunProgressDisplay> progress;
   const drape::RunOutcome outcome = drape::with_command_line_overrides(

@@ -59,6 +59,7 @@ void check_options(const LiveOptions& o) {
                                    o.port));
   }
   check_run_folder(o.out_dir, o.overwrite);
+  check_run_folder_not_experiment(o.out_dir);
 }
 
 // Only this server's own page, and clients that name it, may drive the run (docs/live.md,

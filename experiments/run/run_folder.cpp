@@ -77,6 +77,12 @@ void check_run_folder(const fs::path& dir, bool overwrite) {
     fs::remove(std::exchange(made, made.parent_path()), ec);
 }
 
+void check_run_folder_not_experiment(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(dir / "experiment.json", ec)))
+    throw folder_error(dir, "holds an experiment (experiment.json): choose another folder");
+}
+
 void clear_run_folder(const fs::path& dir) {
   fs::create_directories(dir);
   for (const auto& name : run_file_names()) fs::remove_all(dir / name);

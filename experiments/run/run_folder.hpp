@@ -16,6 +16,10 @@ std::vector<std::string> run_files_in(const std::filesystem::path& dir);
 /// its nearest existing parent is not a writable folder, or it holds another run's files and
 /// `overwrite` is false. Changes nothing.
 void check_run_folder(const std::filesystem::path& dir, bool overwrite);
+/// For a single run's --out (`run`, `live`): an experiment's folder (its experiment.json) is
+/// refused, even with --overwrite: the run's files beside it would make the experiment refuse
+/// to resume. (An experiment checks its own folder with check_run_folder.)
+void check_run_folder_not_experiment(const std::filesystem::path& dir);
 /// Creates `dir` and removes every run file in it (nothing else), summary.json first.
 void clear_run_folder(const std::filesystem::path& dir);
 

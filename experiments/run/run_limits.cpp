@@ -24,6 +24,12 @@ void check_advances(const Scene& scene, const std::string& field, double step) {
 void check_run_limits(const Scene& scene, const IntegratorOptions& options,
                       const std::string& integrator_field) {
   check_advances(scene, integrator_field + ".dt", options.dt);
+  // A fixed step longer than the run would be cut to the duration: the run would not take the
+  // step its scene names.
+  if (!options.adaptive && scene.duration > 0.0 && options.dt > scene.duration)
+    throw InputError(scene.file, integrator_field + ".dt",
+                     "larger than duration (" + nlohmann::json(scene.duration).dump() +
+                         " s): the run would take one step of the duration, not dt");
   if (options.adaptive) check_advances(scene, integrator_field + ".max_dt", options.max_dt);
   // A fixed run takes duration / dt steps, an adaptive one at least duration / max_dt: more
   // than max_steps allows is refused now, not after hours of steps (counted in double:

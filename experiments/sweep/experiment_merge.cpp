@@ -76,7 +76,11 @@ std::string header_difference(const nlohmann::json& source, const nlohmann::json
 std::vector<std::string> merge_results(const fs::path& out_dir, const std::vector<fs::path>& sources) {
   if (!fs::exists(out_dir / "experiment.json") && !sources.empty()) {
     const nlohmann::json first = read_header(sources.front());  // before DIR exists: no empty folder
-    fs::create_directories(out_dir);
+    std::error_code ec;
+    fs::create_directories(out_dir, ec);
+    if (ec || !fs::is_directory(out_dir))
+      throw InputError(out_dir.string(), "DIR",
+                       "cannot be created: " + (ec ? ec.message() : std::string("not a folder")));
     write_json(out_dir / "experiment.json", first, process_tmp_suffix());
   }
   const nlohmann::json header = read_header(out_dir);

@@ -80,8 +80,10 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
   } else {
     o.table = choice("table", o.table);
   }
-  o.rtol = in.positive("rtol", in.number("rtol", o.rtol));
-  o.atol = in.positive("atol", in.number("atol", o.atol));
+  // Above 1 (relative) or 1 m and 1 m/s (absolute) a tolerance no longer controls anything on a
+  // cloth of metres: the error test and the stages' convergence test would pass at once.
+  o.rtol = in.at_most("rtol", in.positive("rtol", in.number("rtol", o.rtol)), 1.0);
+  o.atol = in.at_most("atol", in.positive("atol", in.number("atol", o.atol)), 1.0);
   o.max_dt = in.non_negative("max_dt", in.number("max_dt", o.max_dt));
   o.linear_solver = choice("linear_solver", o.linear_solver);
   o.max_newton_iters = in.integer("max_newton_iters", o.max_newton_iters);
@@ -112,6 +114,10 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
     throw in.error("max_step_halvings", "must be between 0 and 30");
   o.linear_tolerance = in.positive(
       "linear_tolerance", in.number("linear_tolerance", default_linear_tolerance(o.name)));
+  // A relative residual of 1 is met by CG's zero start: no solve at all.
+  if (o.linear_tolerance >= 1.0)
+    throw in.error("linear_tolerance", "must be below 1 (a relative residual of 1 is met by "
+                                       "the zero start: nothing would be solved)");
   o.max_linear_iters = in.integer("max_linear_iters", o.max_linear_iters);
   if (o.max_linear_iters < 1) throw in.error("max_linear_iters", "must be at least 1");
   o.max_steps = static_cast<long>(in.integer_in("max_steps", 1, limits::max_steps, o.max_steps));

@@ -1,6 +1,9 @@
 // Scene validation (docs/model.md section 9): every class of bad input names the file and the field.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "core/scene/input_error.hpp"
 #include "core/scene/scene.hpp"
 #include "tests/support/test_support.hpp"
@@ -181,6 +184,18 @@ TEST(Scene, AnErrorInsideAnOverriddenValueFindsItsOverride) {
   // An override that made the object an error is about (a: unknown key) is behind it.
   EXPECT_EQ(override_behind({"duration=1", "a.b=1"}, "a"), 1u);
   EXPECT_EQ(override_behind(overrides, "cloth.k_structural"), 3u);
+}
+
+// A scene file that is no object is named as such, before an override finds it not an object
+// (bad-input audit, 2026-11-28: the message blamed --set and named no file).
+TEST(Scene, AFileThatIsNoObjectIsNamedBeforeTheOverrides) {
+  const std::filesystem::path file = std::filesystem::path(::testing::TempDir()) / "array.json";
+  std::ofstream(file) << "[1, 2, 3]";
+  EXPECT_EQ(testing::input_error_message([&] {
+              with_command_line_overrides(file.string(), {"duration=0.1"},
+                                          [](const Scene&) { return 0; });
+            }),
+            file.string() + ": expected a JSON object, got array");
 }
 
 TEST(Scene, DirectionsMustBeOrthogonalUnitVectors) {

@@ -44,6 +44,16 @@ TEST(RunFolder, AnotherRunsFilesNeedOverwrite) {
   EXPECT_EQ(check(dir, true), "no error");
 }
 
+// A run's files beside an experiment's would make the experiment refuse to resume.
+TEST(RunFolder, AnExperimentsFolderIsRefused) {
+  const fs::path dir = fresh("experiment");
+  fs::create_directories(dir);
+  std::ofstream(dir / "experiment.json") << "{}";
+  EXPECT_EQ(testing::input_error_message([&] { check_run_folder_not_experiment(dir); }),
+            dir.string() + ": --out: holds an experiment (experiment.json): choose another folder");
+  EXPECT_EQ(check(dir, false), "no error");  // an experiment checks its own folder so
+}
+
 TEST(RunFolder, AFileOrAnUnwritablePlaceIsRefused) {
   const fs::path dir = fresh("file");
   fs::create_directories(dir);

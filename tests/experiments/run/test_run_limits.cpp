@@ -52,6 +52,15 @@ TEST(RunLimits, StepsImpliedByDurationAreCheckedAgainstMaxSteps) {
   EXPECT_EQ(error_for(R"({"name": "arkode-erk", "adaptive": true})", 1e6), "no error");
 }
 
+// A fixed step longer than the run would be cut to the duration (bad-input audit, 2026-11-28).
+TEST(RunLimits, AFixedStepLongerThanTheRunIsAnInputError) {
+  EXPECT_EQ(error_for(R"({"name": "implicit-euler", "dt": 1.0})", 0.1),
+            "scene.json: integrator.dt: larger than duration (0.1 s): the run would take one "
+            "step of the duration, not dt");
+  EXPECT_EQ(error_for(R"({"name": "implicit-euler", "dt": 0.1})", 0.1), "no error");
+  EXPECT_EQ(error_for(R"({"name": "arkode-erk", "adaptive": true, "dt": 1.0})", 0.1), "no error");
+}
+
 TEST(RunLimits, SceneSimulationChecksBeforeBuilding) {
   const Scene scene = scene_with(R"({"name": "leapfrog", "dt": 1e-12})", 10.0);
   EXPECT_EQ(testing::input_error_message([&] { SceneSimulation run(scene); }),

@@ -43,6 +43,25 @@ TEST(ExperimentMerge, TakesRunsOnlyOfThisExperimentAndItsPlannedRuns) {
                                       ": is not this run of the plan"}));
 }
 
+// A merged folder that cannot be created is the command line's DIR, exit 2 (bad-input audit,
+// 2026-11-28: a raw filesystem error, exit 1).
+TEST(ExperimentMerge, AFolderThatCannotBeCreatedIsNamed) {
+  const SmallExperiment small("merge_into_file");
+  drape::run_experiment(small.experiment, small.options);
+  const fs::path file = small.dir / "a_file";
+  std::ofstream(file) << "x";
+  for (const fs::path& out : {file, file / "sub"}) {
+    try {
+      drape::merge_results(out, {small.options.out_dir});
+      ADD_FAILURE() << "merged into " << out;
+    } catch (const drape::InputError& e) {
+      EXPECT_EQ(e.file(), out.string());
+      EXPECT_EQ(e.field(), "DIR");
+      EXPECT_NE(std::string(e.what()).find("cannot be created"), std::string::npos) << e.what();
+    }
+  }
+}
+
 // A damaged or crafted experiment.json is named field by field (exit 2), and a plan id that
 // is a path is refused before anything is removed (a "../victim" id removed a folder outside).
 TEST(ExperimentMerge, ChecksTheHeaderItReads) {

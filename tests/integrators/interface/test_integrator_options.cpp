@@ -140,6 +140,22 @@ TEST(IntegratorOptions, ExactSolveIsLuOrBicgstabWithAPreconditioner) {
             "");
 }
 
+// Tolerances that control nothing are refused (bad-input audit, 2026-11-28).
+TEST(IntegratorOptions, TolerancesAreBoundedAbove) {
+  const nlohmann::json adaptive = {{"name", "arkode-erk"}, {"adaptive", true}};
+  nlohmann::json o = adaptive;
+  o["rtol"] = 1e300;
+  EXPECT_EQ(error_of(o), "scene.json: integrator.rtol: must be at most 1.0, got 1e+300");
+  o = adaptive;
+  o["atol"] = 2.0;
+  EXPECT_EQ(error_of(o), "scene.json: integrator.atol: must be at most 1.0, got 2.0");
+  EXPECT_EQ(error_of({{"name", "implicit-euler"}, {"dt", 0.01}, {"linear_tolerance", 1.0}}),
+            "scene.json: integrator.linear_tolerance: must be below 1 (a relative residual of 1 "
+            "is met by the zero start: nothing would be solved)");
+  EXPECT_EQ(error_of({{"name", "implicit-euler"}, {"dt", 0.01}, {"linear_tolerance", 0.5}}),
+            "no error");
+}
+
 // arkode-imex's split names the forces on the implicit side: two choices, anything else named.
 TEST(IntegratorOptions, ImexSplitIsOneOfTwo) {
   EXPECT_EQ(error_of({{"name", "arkode-imex"}, {"dt", 1e-3}, {"imex_split", "collision"}}),
