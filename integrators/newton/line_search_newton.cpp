@@ -162,11 +162,13 @@ bool LineSearchNewton::shifted_exact_direction(ConstVecRef z, double gamma, doub
   for (;;) {
     ++result.setups;
     m_exact.form(z.head(n3), z.tail(n3), gamma, shift);
-    const bool solved =
-        (m_exact_solve == ExactSolve::bicgstab &&
-         m_exact.krylov_direction(m_gradient, m_direction, m_precondition, forcing,
-                                  max_krylov_iterations, result.krylov_iterations)) ||
-        (m_exact.factorize() && (m_exact.newton_direction(m_gradient, m_direction), true));
+    bool solved = m_exact_solve == ExactSolve::bicgstab &&
+                  m_exact.krylov_direction(m_gradient, m_direction, m_precondition, forcing,
+                                           max_krylov_iterations, result.krylov_iterations);
+    if (!solved && m_exact.factorize()) {  // the LU: by choice, or where BiCGSTAB fell short
+      m_exact.newton_direction(m_gradient, m_direction);
+      solved = true;
+    }
     if (solved) {
       slope = m_gradient.dot(m_direction);
       if (slope < 0.0) {
