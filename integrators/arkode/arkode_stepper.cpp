@@ -53,7 +53,7 @@ ArkodeStepper::ArkodeStepper(ClothSystem& system, ArkodeKind kind,
                       options.max_linear_iters);
   if (m_reduced && uses_line_search(options))
     m_line_search.emplace(system, m_split.implicit_part, *m_reduced,
-                          exact_solve_named(exact_solve_of(options)));
+                          *exact_solve_named(exact_solve_of(options)));
   // The N_Vector views m_y for the whole life of the stepper: m_y keeps this size and buffer.
   m_y = Eigen::VectorXd::Zero(system.size());
   m_y_vector = detail::wrap_vector(m_y, m_context);

@@ -10,7 +10,7 @@ ImplicitEuler::ImplicitEuler(ClothSystem& system, const IntegratorOptions& optio
                linear_tolerance_of(options), options.max_linear_iters) {
   if (uses_line_search(options))
     m_line_search.emplace(system, ForceSplit::all, m_solver,
-                          exact_solve_named(exact_solve_of(options)));
+                          *exact_solve_named(exact_solve_of(options)));
 }
 
 double ImplicitEuler::step(double t_stop) {

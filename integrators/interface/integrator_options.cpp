@@ -101,14 +101,7 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
   o.solve = choice("solve", o.solve);
   if (!o.solve.empty() && o.solve != "linearised" && o.solve != "converged")
     throw in.error("solve", "unknown solve '" + o.solve + "' (one of: linearised, converged)");
-  o.exact_solve = choice("exact_solve", o.exact_solve);
-  if (!o.exact_solve.empty() && o.exact_solve != "lu" && o.exact_solve != "bicgstab")
-    throw in.error("exact_solve",
-                   "unknown exact solve '" + o.exact_solve + "' (one of: lu, bicgstab)");
-  if (o.exact_solve == "bicgstab" && linear_solver_of(o) == "sparse-direct")
-    throw in.error("exact_solve",
-                   "bicgstab is preconditioned by the linear solver's preconditioner of S: it "
-                   "needs linear_solver pcg-reduced or pcg-multigrid, not sparse-direct");
+  o.exact_solve = choice("exact_solve", o.exact_solve);  // checked with the linear solver's name
   o.max_step_halvings = in.integer("max_step_halvings", o.max_step_halvings);
   if (o.max_step_halvings < 0 || o.max_step_halvings > 30)
     throw in.error("max_step_halvings", "must be between 0 and 30");

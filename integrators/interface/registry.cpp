@@ -5,6 +5,7 @@
 #include "integrators/arkode/arkode_tables.hpp"
 #include "integrators/implicit_euler/implicit_euler.hpp"
 #include "integrators/explicit/leapfrog.hpp"
+#include "integrators/newton/line_search_newton.hpp"
 #include "integrators/newton/reduced_newton_solver.hpp"
 #include "integrators/explicit/symplectic_euler.hpp"
 
@@ -94,6 +95,16 @@ void validate_integrator_choice(const IntegratorOptions& options, const std::str
     throw InputError(file, path + ".linear_solver",
                      "unknown linear solver '" + options.linear_solver +
                          "' (one of: " + reduced_solve_names() + ")");
+  const std::optional<ExactSolve> exact = exact_solve_named(exact_solve_of(options));
+  if (!exact)
+    throw InputError(file, path + ".exact_solve",
+                     "unknown exact solve '" + options.exact_solve + "' (one of: " +
+                         exact_solve_names() + ")");
+  if (*exact == ExactSolve::bicgstab &&
+      *reduced_solve_named(linear_solver_of(options)) == ReducedSolve::sparse_ldlt)
+    throw InputError(file, path + ".exact_solve",
+                     "bicgstab is preconditioned by the linear solver's preconditioner of S: it "
+                     "needs linear_solver pcg-reduced or pcg-multigrid, not sparse-direct");
 }
 
 std::unique_ptr<Integrator> make_integrator(const IntegratorOptions& options,

@@ -54,9 +54,13 @@ double forcing_term(double gradient_norm, double previous_norm, double floor) {
 
 }  // namespace
 
-ExactSolve exact_solve_named(const std::string& name) {
-  return name == "bicgstab" ? ExactSolve::bicgstab : ExactSolve::lu;
+std::optional<ExactSolve> exact_solve_named(const std::string& name) {
+  if (name == "lu") return ExactSolve::lu;
+  if (name == "bicgstab") return ExactSolve::bicgstab;
+  return std::nullopt;
 }
+
+std::string exact_solve_names() { return "lu, bicgstab"; }
 
 LineSearchNewton::LineSearchNewton(const ClothSystem& system, ForceSplit split,
                                    ReducedNewtonSolver& solver, ExactSolve exact_solve)

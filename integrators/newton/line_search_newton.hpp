@@ -19,6 +19,7 @@
 // observed rate, is at most `tolerance` (ARKODE's test, arkStep_NlsConvTest, with that factor
 // for min(rate, 1)).
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 
 #include "core/model/cloth_system.hpp"
@@ -51,8 +52,10 @@ enum class ExactSolve {
              ///< where it does not get there in max_krylov_iterations
 };
 
-/// `lu` or `bicgstab` (validated by read_integrator_options).
-ExactSolve exact_solve_named(const std::string& name);
+/// The ExactSolve named `lu` or `bicgstab`; nothing for another name.
+std::optional<ExactSolve> exact_solve_named(const std::string& name);
+/// "lu, bicgstab", for messages.
+std::string exact_solve_names();
 
 /// How a stage solve stops.
 struct StageTolerance {
