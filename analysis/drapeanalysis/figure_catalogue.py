@@ -42,3 +42,8 @@ FIGURE_METRIC = {
     "vibration_events_vs_dt": "vibration", "contact_switch_vs_dt": "vibration",
     "stable_dt": "stable_dt", "restart_error_vs_horizon": "restart_error",
 }
+
+# Every name an experiment's `metrics` may hold: drapelab's known_metrics()
+# (experiments/sweep/experiment.cpp), which refuses any other; mapping_error has a column and no
+# figure, snapshots figures of their own.
+KNOWN_METRICS = frozenset(FIGURE_METRIC.values()) | {"mapping_error", "snapshots"}

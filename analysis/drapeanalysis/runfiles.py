@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .figure_catalogue import KNOWN_METRICS
 from .fileio import input_problem, open_input
 from .values import (JSON_TYPES, RESTART_STATUSES, RESULT_STATUSES, RUN_STATUSES, check_finite_array,
                      check_flags, check_increasing, check_status, finite_number, json_type, shown)
@@ -227,9 +228,9 @@ RESULTS_FIELDS = {"name": (str, None), "question": (str, None), "metrics": (list
 
 def check_results(doc, path):
     """A ValueError naming results.json and the field when the document lacks a field the report
-    reads or holds the wrong type there, when a run's id is empty, repeated or would name a
-    file outside the report's folder (RUN_ID.mp4, view/RUN_ID.html), or its status is not one
-    merge writes."""
+    reads or holds the wrong type there, names an unknown metric or lists more runs than its
+    plan_size, when a run's id is empty, repeated or would name a file outside the report's
+    folder (RUN_ID.mp4, view/RUN_ID.html), or its status is not one merge writes."""
     if not isinstance(doc, dict):
         raise ValueError(f"{path}: expected a JSON object, got {json_type(doc)}")
     for key, (kind, item) in RESULTS_FIELDS.items():
@@ -240,6 +241,10 @@ def check_results(doc, path):
         if not isinstance(value, kind) or isinstance(value, bool) or wrong is not None:
             what = JSON_TYPES[kind] + (f" of {JSON_TYPES[item].split(' ', 1)[1]}s" if item else "")
             raise ValueError(f"{path}: {key}: expected {what}, got {shown(value if wrong is None else wrong)}")
+    for k, name in enumerate(doc["metrics"]):
+        if name not in KNOWN_METRICS:
+            raise ValueError(f"{path}: metrics[{k}]: unknown metric {shown(name)} (known: "
+                             f"{', '.join(sorted(KNOWN_METRICS))})")
     seen = set()
     for k, run in enumerate(doc["runs"]):
         for key in ("id", "run_dir"):
@@ -252,6 +257,10 @@ def check_results(doc, path):
             raise ValueError(f"{path}: runs[{k}].id: {run['id']!r} repeats an earlier run's id")
         seen.add(run["id"])
         check_status(run.get("status"), RESULT_STATUSES, path, f"runs[{k}].status")
+    # merge writes the plan's size and the runs that finished, never more runs than planned.
+    if doc["plan_size"] < len(doc["runs"]):
+        raise ValueError(f"{path}: plan_size: {doc['plan_size']}, but runs lists {len(doc['runs'])} "
+                         "runs (merge writes at most the plan's runs)")
 
 
 def load_experiment(directory):

@@ -27,13 +27,20 @@ const std::vector<std::string>& experiment_run_file_names() {
 
 namespace {
 
-// The name in an experiment.json; "" when it has none or cannot be read.
-std::string experiment_name(const fs::path& header) {
-  if (unreadable_file_reason(header.string())) return "";  // a FIFO would wait for a writer
+// Why a folder holding the experiment.json `header` is not experiment `name`'s to resume: ""
+// when it is. A damaged header is said to be one, not taken for another experiment's.
+std::string header_conflict(const fs::path& header, const std::string& name) {
+  if (const auto reason = unreadable_file_reason(header.string()))  // a FIFO would wait
+    return "holds an experiment.json that cannot be read (" + *reason + ")";
   std::ifstream in(header);
   const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-  if (!doc.is_object() || !doc.contains("name") || !doc["name"].is_string()) return "";
-  return doc["name"].get<std::string>();
+  if (doc.is_discarded()) return "holds an experiment.json that is not valid JSON (damaged?)";
+  if (!doc.is_object() || !doc.contains("name") || !doc["name"].is_string())
+    return "holds an experiment.json without a name (not one drapelab wrote)";
+  const std::string other = doc["name"].get<std::string>();
+  if (other == name) return "";
+  return "holds the files of another experiment (experiment.json names '" + other + "', not '" +
+         name + "')";
 }
 
 }  // namespace
@@ -52,12 +59,10 @@ void check_experiment_folder(const fs::path& dir, const std::string& name, bool 
                            "folder or pass --overwrite");
   }
   if (!fs::exists(fs::symlink_status(header, ec))) return;
-  const std::string other = experiment_name(header);
-  if (other == name) return;
+  const std::string conflict = header_conflict(header, name);
+  if (conflict.empty()) return;
   throw InputError(dir.string(), "--out",
-                   "holds the files of another experiment (experiment.json names '" + other +
-                       "', not '" + name +
-                       "'); pass --overwrite to replace them, or choose another folder");
+                   conflict + "; pass --overwrite to replace them, or choose another folder");
 }
 
 void clear_experiment_folder(const fs::path& dir) {

@@ -36,6 +36,11 @@ void check_header(const nlohmann::json& header, const std::string& file) {
           "a count");
   const nlohmann::json& plan = header["plan"];
   require("plan", plan.is_array(), "a list of runs");
+  // The report reads plan_size to tell a finished experiment from a partial merge.
+  if (header["plan_size"] != plan.size())
+    throw InputError(file, "plan_size",
+                     fmt::format("{} differs from the plan's {} runs", header["plan_size"].dump(),
+                                 plan.size()));
   for (std::size_t k = 0; k < plan.size(); ++k) {
     const std::string field = fmt::format("plan[{}]", k);
     if (!plan[k].is_object() || !plan[k].contains("reference"))

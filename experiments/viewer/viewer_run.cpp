@@ -114,6 +114,10 @@ void read_hands(const fs::path& file, ViewerRun& run, int particles) {
   const CsvTable table(file, {"t", "available", "x", "y", "z", "candidate", "held"}, {"hand"});
   for (int r = 0; r < table.rows(); ++r) {
     const std::string& name = table.text(r, 0);
+    // The page draws two hands; a third name would be a third track it has no colour for.
+    if (name != "left" && name != "right")
+      throw InputError(table.file(), table.line(r),
+                       "column 'hand' is '" + name + "', expected left or right");
     auto hand = std::find_if(run.hands.begin(), run.hands.end(),
                              [&](const ViewerHand& h) { return h.name == name; });
     if (hand == run.hands.end()) {
@@ -160,11 +164,13 @@ void check_page_fields(const nlohmann::json& summary, const std::string& file) {
   for (const char* key : {"status", "integrator"}) expect(summary, key, key, string, "a string");
   expect(summary, "table", "table",
          [](const nlohmann::json& j) { return j.is_string() || j.is_null(); }, "a string or null");
+  // The time slider spans them: a negative length has no frame to show.
   for (const char* key : {"duration", "sim_time"})
-    expect(summary, key, key, number, "a finite number");
+    expect(summary, key, key, [](const nlohmann::json& j) { return finite_number(j) && j >= 0.0; },
+           "a finite number, 0 or more");
   expect(summary, "dt", "dt",
-         [](const nlohmann::json& j) { return j.is_null() || finite_number(j); },
-         "a finite number or null");
+         [](const nlohmann::json& j) { return j.is_null() || (finite_number(j) && j > 0.0); },
+         "a finite number above 0, or null");
   expect(summary, "adaptive", "adaptive", [](const nlohmann::json& j) { return j.is_boolean(); },
          "true or false");
   const nlohmann::json& scene = summary["scene"];

@@ -297,6 +297,11 @@ class DocumentTest(runfolder.RunFolderTest):
                 ({**self.RESULTS, "parameters": "integrator.dt"}, 'parameters: expected a list of strings, got "integrator.dt"'),
                 ({**self.RESULTS, "columns": ["id", 3]}, "columns: expected a list of strings, got 3"),
                 ({**self.RESULTS, "plan_size": True}, "plan_size: expected an integer, got true"),
+                ({**self.RESULTS, "plan_size": 0}, "plan_size: 0, but runs lists 1 runs (merge writes at most the plan's runs)"),
+                ({**self.RESULTS, "plan_size": -1}, "plan_size: -1, but runs lists 1 runs (merge writes at most the plan's runs)"),
+                ({**self.RESULTS, "metrics": ["vibration", "vibrations"]},
+                 'metrics[1]: unknown metric "vibrations" (known: attach_error, energy_drift, mapping_error, '
+                 'restart_error, snapshots, stable_dt, vibration, work_precision)'),
                 ({**self.RESULTS, "runs": [1]}, "runs: expected a list of objects, got 1"),
                 ({**self.RESULTS, "runs": [{"run_dir": "runs/a", "status": "ok"}]}, "runs[0].id: expected a non-empty string, got null"),
                 ({**self.RESULTS, "runs": [{"id": "a", "run_dir": "", "status": "ok"}]}, 'runs[0].run_dir: expected a non-empty string, got ""'),

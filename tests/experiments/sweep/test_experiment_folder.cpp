@@ -48,6 +48,16 @@ TEST(ExperimentFolder, ARunsOrAnotherExperimentsFolderIsRefusedWithoutOverwrite)
                               "names 'good', not 'small'); pass --overwrite to replace them, or "
                               "choose another folder");
   EXPECT_EQ(refusal(dir, true), "no error");
+  // A damaged header is said to be one, not another experiment's named ''.
+  std::ofstream(dir / "experiment.json") << R"({"name": "sma)";
+  EXPECT_EQ(refusal(dir), dir.string() +
+                              ": --out: holds an experiment.json that is not valid JSON "
+                              "(damaged?); pass --overwrite to replace them, or choose another "
+                              "folder");
+  std::ofstream(dir / "experiment.json") << R"({"plan": []})";
+  EXPECT_EQ(refusal(dir), dir.string() +
+                              ": --out: holds an experiment.json without a name (not one drapelab "
+                              "wrote); pass --overwrite to replace them, or choose another folder");
   // The same experiment resumes.
   std::ofstream(dir / "experiment.json") << R"({"name": "small", "plan": []})";
   EXPECT_EQ(refusal(dir), "no error");

@@ -96,6 +96,9 @@ TEST(ExperimentMerge, ChecksTheHeaderItReads) {
   damaged = header;
   damaged["plan"][1] = 7;
   EXPECT_EQ(field_of(damaged), "plan[1]");
+  damaged = header;
+  damaged["plan_size"] = header["plan"].size() + 1;
+  EXPECT_EQ(field_of(damaged), "plan_size");
   EXPECT_EQ(field_of(header), "<no error>");
   // A new DIR is made only once the first source's header is read.
   const fs::path fresh = small.dir / "fresh";

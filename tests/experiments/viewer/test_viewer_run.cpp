@@ -91,6 +91,7 @@ TEST(ViewerRun, ValuesNoRunWritesAreNamed) {
       {"dummy.csv", dummy + "0,0,0,0,1e300,0,0,0,1\n",
        "line 2: a coordinate of 1e+300 is not finite in single precision"},
       {"hands.csv", hands + "0,right,1,0,0,0,1,0,nan\n", "line 2: column 'held' is nan, expected an integer in [-1, 1]"},
+      {"hands.csv", hands + "0,middle,1,0,0,0,1,0,-1\n", "line 2: column 'hand' is 'middle', expected left or right"},
       {"hands.csv", hands + "0,right,nan,0,0,0,1,0,-1\n",
        "line 2: column 'available' is nan, expected an integer in [0, 1]"},
       // Each hand's own times (the two hands share each time).
@@ -129,6 +130,16 @@ TEST(ViewerRun, FieldsAndFramesThePageCannotShowAreNamed) {
   testing::write_text(dir / "summary.json",
                       R"({"status": 3, "scene": {"cloth": {"rows": 1, "cols": 2}}})");
   EXPECT_EQ(input_error_message([&] { read_viewer_run(dir); }), summary + ": status: expected a string");
+  for (const auto& [field, value, message] : std::vector<std::array<std::string, 3>>{
+           {"duration", "-1", "a finite number, 0 or more"},
+           {"sim_time", "-0.5", "a finite number, 0 or more"},
+           {"dt", "-0.01", "a finite number above 0, or null"},
+           {"dt", "0", "a finite number above 0, or null"}}) {
+    testing::write_text(dir / "summary.json", R"({"status": "ok", ")" + field + "\": " + value +
+                                                  R"(, "scene": {"cloth": {"rows": 1, "cols": 2}}})");
+    EXPECT_EQ(input_error_message([&] { read_viewer_run(dir); }),
+              summary + ": " + field + ": expected " + message);
+  }
   // A tiny run's two frames (t = 0 and 0.05 s) with one coordinate `bad`, in the first frame's
   // y or the last's x: view's message for it.
   const auto with_coordinate = [](const std::string& name, const std::string& first_y,
