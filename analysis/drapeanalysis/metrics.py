@@ -116,9 +116,15 @@ def vibration(run, summary, window=VIBRATION_WINDOW):
     after_events = fine if fine is not None else trace
     end = float((trace if trace is not None else fine)["t"][-1])
     times = _event_times(summary)
+    # A window ends at the next event of the input, not at an attach_fixed: that one comes
+    # attach_iterations steps after its attach, so at a time that depends on the step, and would
+    # cut an explicit run's window after an attach to 50 ms where an implicit run's (whose attach
+    # does not complete) runs 0.5 s: the same metric over windows of different lengths.
+    ends = sorted({float(e["t"]) for e in summary.get("events", [])
+                   if e.get("type") not in ("ignored", "attach_fixed")})
     windows = []
-    for k, t0 in enumerate(times):
-        t1 = min(t0 + window, times[k + 1] if k + 1 < len(times) else end, end)
+    for t0 in times:
+        t1 = min([t0 + window, end] + [t for t in ends if t > t0 + 1e-12][:1])
         windows.append(vibration_window(after_events, t0, t1, cutoff, hands))
         windows[-1]["events"] = "+".join(sorted({e["type"] for e in summary.get("events", [])
                                                  if e.get("type") != "ignored" and float(e["t"]) == t0}))
@@ -144,7 +150,7 @@ def vibration(run, summary, window=VIBRATION_WINDOW):
     holding = []
     holds = sorted(float(e["t"]) for e in summary.get("events", []) if e.get("type") == "hold")
     for t0 in holds:
-        later = [t for t in times if t > t0 + 1e-12]
+        later = [t for t in ends if t > t0 + 1e-12]
         t1 = min(later[0] if later else end, end)
         if t1 - (t0 + window) >= window:
             holding.append(vibration_window(trace, t0 + window, t1, cutoff, hands))

@@ -228,6 +228,30 @@ class RunVibrationTest(runfolder.RunFolderTest):
         self.assertEqual(all_out["vibration_rms_holding"], out["vibration_rms_holding"])
         self.assertEqual(len(all_windows), 2)
 
+    def test_an_attach_window_does_not_end_at_its_attach_fixed(self):
+        # attach_fixed comes attach_iterations steps after the attach (50 ms for an explicit run,
+        # never within the run for an implicit one at 1/30 s): the window after the attach is
+        # 0.5 s for every method, bounded by the input's next event, not by it.
+        run = self.make_run()
+        runfolder.write_summary(run, [{"t": 0.2, "type": "attach", "hand": "left"},
+                                      {"t": 0.25, "type": "attach_fixed", "hand": "left"},
+                                      {"t": 0.6, "type": "release", "hand": "left"}],
+                                runfolder.CLOTH_SCENE)
+        t = np.arange(1201) / 1000.0
+        event = np.zeros(len(t), int)
+        event[np.searchsorted(t, [0.2, 0.25, 0.6])] = 1
+        d = runfolder.unit_directions(2)
+        phase = 2 * np.pi * 250.0 * t[:, None] + np.arange(2)
+        # 1 mm of vibration until the attached particle is fixed, none after it.
+        x = (np.where(t < 0.25, 1e-3, 0.0)[:, None] * np.sin(phase))[:, :, None] * d
+        runfolder.write_trace(run, t, x, np.zeros_like(x), event=event)
+        out, windows = metrics.vibration(run, runfiles.read_json(run / "summary.json"))
+        self.assertEqual([(w["window_start"], w["window_end"], w["events"]) for w in windows],
+                         [(0.2, 0.6, "attach"), (0.25, 0.6, "attach_fixed"), (0.6, 1.1, "release")])
+        # 1 mm over the first 50 ms of the 400 ms window: RMS 1e-3 / sqrt(2) sqrt(50 / 400).
+        self.assertClose(out["vibration_rms_after_attach"], 1e-3 / math.sqrt(2) * math.sqrt(0.05 / 0.4), rel=0.05)
+        self.assertLess(out["vibration_rms_after_attach_fixed"], 1e-6)
+
     def test_run_without_events_settles_from_the_start(self):
         run = self.make_run()
         runfolder.write_summary(run, [{"t": 0.5, "type": "ignored"}], runfolder.CLOTH_SCENE)
