@@ -39,6 +39,8 @@ std::string format_run_stats(const nlohmann::json& s) {
   out += line("simulated time", fmt::format("{:.6g} s of {:.6g} s", sim_time, s["duration"].get<double>()));
   out += line("wall time", fmt::format("{:.3g} s ({:.3g} x real time)", wall,
                                        wall > 0.0 ? sim_time / wall : 0.0));
+  for (const auto& warning : s.value("warnings", nlohmann::json::array()))
+    out += "warning: " + warning.get<std::string>() + "\n";
   return out;
 }
 
