@@ -25,6 +25,8 @@
     this.controls = new THREE.OrbitControls(this.camera, this.canvas);
     this.controls.enableKeys = false;
     this.controls.addEventListener('change', function () { self.render(); });
+    // Once the person turns or zooms the view, the page no longer reframes it (keep_in_view).
+    this.controls.addEventListener('start', function () { self.camera_moved = true; });
     this.cloth = null;  // the ClothScene, made at the first frame
     this.history = [];  // [wall, t] of recent frames
     this.frames = 0;
@@ -52,6 +54,7 @@
 
   Live.prototype.set_camera = function (kind) {
     drape.camera_preset(this.camera, this.controls, this.bounds, kind);
+    this.camera_moved = false;
     document.querySelectorAll('[data-camera]').forEach(function (b) { b.classList.toggle('on', b.dataset.camera === kind); });
     this.camera_kind = kind;
     this.render();
@@ -64,6 +67,17 @@
     this.cloth_centre = this.bounds.getCenter(new THREE.Vector3());
     if (this.cloth.dummy_bounds) this.bounds.union(this.cloth.dummy_bounds);
     this.set_camera(hash.get('view') || 'front');
+  };
+
+  // The view frames the cloth at its start (and the object); a cloth that leaves that box (a
+  // sheet swinging down from its pins, a hand carrying it off) grows it, with a tenth of its
+  // size to spare so that a swing reframes a few times, not every frame, and the view is framed
+  // on it again unless the person has moved the camera themselves.
+  Live.prototype.keep_in_view = function (positions) {
+    var now = new THREE.Box3().setFromArray(positions);
+    if (this.bounds.containsBox(now)) return;
+    this.bounds.union(now.expandByVector(now.getSize(new THREE.Vector3()).multiplyScalar(0.1)));
+    if (!this.camera_moved) this.set_camera(this.camera_kind);
   };
 
   // Frames come at 30 a second; the page draws the latest one at the next animation frame, so
@@ -82,7 +96,10 @@
   Live.prototype.on_frame = function (f) {
     var positions = new Float32Array(drape.base64_bytes(f.positions).buffer);
     if (!this.cloth) this.first_frame(positions.slice());
-    else this.cloth.positions.set(positions);
+    else {
+      this.cloth.positions.set(positions);
+      this.keep_in_view(positions);
+    }
     this.take_events(f);
     if (this.events.length !== this.events_shown) {
       this.cloth.set_attach_targets(this.events);

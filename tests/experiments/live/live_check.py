@@ -163,6 +163,26 @@ def main():
         took = time.monotonic() - asked
     assert code == 0 and took < 10 and published >= 10, (code, took, published)
     print(f"slow run: {published} frames in 2 s, stopped {took:.1f} s after Ctrl-C")
+    # a run that can keep up and was held up (stopped for 1.5 s, as a stall at the start or a busy
+    # machine does) catches up with the wall clock: "cannot keep up" stayed for the whole session
+    # while the real-time factor read 1.00
+    # (a build too slow to keep up at all, as the sanitizers' may be, has nothing to catch up to)
+    stalled = LiveRun(drapelab, scene, work / "stalled", "--set", "duration=60")
+    with stalled:
+        before = stalled.wait_for(lambda f: f["wall"] > 1.0, "1 s of wall clock")
+        if before["behind"]:
+            print(f"stalled run: not checked, this build cannot keep up (rtf {before['rtf']:.2f})")
+        else:
+            stalled.proc.send_signal(signal.SIGSTOP)
+            time.sleep(1.5)
+            stalled.proc.send_signal(signal.SIGCONT)
+            behind = stalled.wait_for(lambda f: f["behind"], "the stall to show")
+            caught_up = stalled.wait_for(lambda f: not f["behind"] and f["wall"] > behind["wall"],
+                                         "catching up", timeout=20)
+            print(f"stalled run: {behind['wall'] - behind['t']:.2f} s behind at {behind['wall']:.2f} s, "
+                  f"caught up by {caught_up['wall']:.2f} s")
+        code, _, _ = stalled.stop()
+    assert code == 0, code
     print(f"live check: {len(frames)} frames, events {live_events}")
 
 
