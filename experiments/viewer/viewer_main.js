@@ -50,9 +50,12 @@
     this.playing = false;
     this.speed = 1;
     this.t = 0;
+    // The first time every run has a frame: 0 with traces; a run with its final state only
+    // (state.csv) opens at its end, where that state is, not at 0 beside the hands of t = 0.
+    this.start = Math.max.apply(null, runs.map(function (run) { return run.frames.times[0]; }));
     this.layout();
     this.set_camera(options.view);
-    this.set_time(options.times.length ? options.times[0] : 0);
+    this.set_time(options.times.length ? options.times[0] : this.start);
   }
 
   Viewer.prototype.layout = function () {
@@ -174,7 +177,7 @@
     var gl = this.renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
     var bg = [this.background.r, this.background.g, this.background.b].map(function (c) { return Math.round(255 * c); });
     var pixels = new Uint8Array(4 * w * h), renders = [], self = this;
-    var times = this.options.times.length ? this.options.times : [0];
+    var times = this.options.times.length ? this.options.times : [this.start];
     times.forEach(function (t) {
       self.set_time(t);
       self.render();

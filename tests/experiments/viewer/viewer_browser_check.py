@@ -4,8 +4,8 @@
 Runs a tiny hold scene twice with a trace (leap-frog and implicit Euler), writes their page
 with `drapelab view`, opens it in headless chromium with the page's test hook
 (#test&t=A&t=B), and checks what the page wrote into its DOM: no errors, a picture in each
-run's viewport, different pictures at the two times, and that the slider, play and a camera
-button act. Also checks that `drapelab view` refuses a folder that is not a run, and a
+run's viewport, different pictures at the two times, that the slider, play and a camera
+button act, and that a run with its final state only (no trace) opens at its end. Also checks that `drapelab view` refuses a folder that is not a run, and a
 malformed trace, with exit status 2.
 
 Usage: viewer_browser_check.py DRAPELAB SOURCE_DIR WORK_DIR   (exit 77: no chromium, skipped)
@@ -107,7 +107,20 @@ def main():
     ui = result["ui"]
     if abs(ui["slider_t"] - 0.2) > 1e-9 or abs(ui["played"] - 0.5) > 1e-9 or ui["camera"] != "side":
         fail("the slider, play or camera buttons do not work: " + json.dumps(ui))
-    print(f"OK: {len(renders)} pictures, {page.stat().st_size / 1e6:.2f} MB page")
+    # A run with its final state only (no trace.csv) opens at its end, where that state is: it
+    # opened at t = 0, the final cloth beside the hands of t = 0.
+    run([drapelab, "run", scene, "--out", work / "final_only", "--set", "duration=0.8",
+         "--set", "output.trace_interval=0"])
+    final_page = work / "final_only.html"
+    run([drapelab, "view", work / "final_only", "--out", final_page])
+    dom = run([chromium] + CHROMIUM_FLAGS + ["--dump-dom", final_page.resolve().as_uri() + "#test"]).stdout
+    found = re.search(r'<pre id="test-result"[^>]*>(.*?)</pre>', dom, re.S)
+    final = json.loads(html.unescape(found.group(1))) if found else {}
+    opened_at = [r["t"] for r in final.get("renders", [])]
+    if not final.get("ok") or opened_at != [0.8]:
+        fail("a run with its final state only does not open at its end (0.8 s): " + json.dumps(final)[:500])
+    print(f"OK: {len(renders)} pictures, {page.stat().st_size / 1e6:.2f} MB page; "
+          f"a final state only opens at t = {opened_at[0]}")
     return 0
 
 
