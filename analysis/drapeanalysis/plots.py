@@ -100,14 +100,15 @@ def line_plot(out_dir, stem, rows, parameters, x_key, y_key, xlabel, ylabel, log
     if not groups:
         return None
     fig, ax = plt.subplots(figsize=(6, 4))
+    log_y = logy and all(p[1] > 0 for ps in groups.values() for p in ps)
     for k, (name, points) in enumerate(groups.items()):
         xs, ys, half, _, _ = zip(*points)
-        bars = ax.errorbar(xs, ys, yerr=half, label=name, capsize=3, **style.variant_style(k))
+        bars = style.log_errorbar(ax, xs, ys, half, k, len(groups), dodge=logx, log_y=log_y,
+                                  label=name, **style.variant_style(k))
         mark_partial(ax, points, bars.lines[0].get_color())
     ax.set_xscale("log" if logx else "linear")
-    ax.set_yscale("log" if logy and all(p[1] > 0 for ps in groups.values() for p in ps) else "linear")
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel(ylabel)
+    ax.set_yscale("log" if log_y else "linear")
+    ax.set(xlabel=xlabel, ylabel=ylabel)
     ax.grid(True, which="both", alpha=0.3)
     style.legend_beside(ax)
     return style.save(fig, out_dir, stem)
@@ -260,8 +261,8 @@ def work_precision(out_dir, rows, parameters):
                     (np.mean([x for x, _ in pairs]), *stats.interval([y for _, y in pairs])[1::2], dt)
                     for dt, pairs in by_step.items())
                 xs, ys, half, _ = zip(*points[series_name])
-                ax.errorbar(xs, ys, yerr=np.nan_to_num(half), fmt="o-", capsize=3, label=series_name,
-                            color=colors[series_name])
+                style.log_errorbar(ax, xs, ys, half, dodge=False, fmt="o-", label=series_name,
+                                   color=colors[series_name])
             ax.set_xscale("log")
             ax.set_yscale("log")
             for series_name, series in points.items():  # step sizes, clear of each other
@@ -302,10 +303,10 @@ def restart_error_vs_horizon(directory, out_dir, rows, parameters):
         return None
     fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 3.6), squeeze=False, sharey=True)
     for ax, (scene, groups) in zip(axes[0], sorted(panels.items())):
-        for name, by_horizon in sorted(groups.items()):
+        for k, (name, by_horizon) in enumerate(sorted(groups.items())):
             horizons = sorted(by_horizon)
             _, means, _, half = zip(*(stats.interval(by_horizon[h]) for h in horizons))
-            ax.errorbar(horizons, means, yerr=np.nan_to_num(half), capsize=3, label=name, **styles[name])
+            style.log_errorbar(ax, horizons, means, half, k, len(groups), label=name, **styles[name])
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(scene)
@@ -353,12 +354,12 @@ def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",
             continue
         # Integrator by colour; the other swept values by marker and line style.
         variants = sorted({name.split(", ", 1)[-1] if ", " in name else "" for name in groups})
-        for name, points in sorted(groups.items()):
+        for k, (name, points) in enumerate(sorted(groups.items())):
             xs, ys, half, _, _ = zip(*points)
             variant = variants.index(name.split(", ", 1)[-1] if ", " in name else "")
             color, marker = colors[name]
-            ax.errorbar(xs, ys, yerr=half, label=name, color=color, mfc="none", mew=1.2, capsize=3,
-                        **{**style.variant_style(variant), "marker": marker})
+            style.log_errorbar(ax, xs, ys, half, k, len(groups), label=name, color=color, mfc="none",
+                               mew=1.2, **{**style.variant_style(variant), "marker": marker})
             mark_partial(ax, points, color)
         reference_name, reference_ys = references.get(panel, ("", []))
         reference_y = stats.interval(reference_ys)[1]
@@ -366,8 +367,7 @@ def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",
             ax.axhline(reference_y, c="k", lw=1.0, ls="--", label=f"{reference_name} (reference)")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("dt [s]")
-        ax.set_ylabel(ylabel)
+        ax.set(xlabel="dt [s]", ylabel=ylabel)
         ax.grid(True, which="both", alpha=0.3)
     for ax in axes.ravel()[len(panels):]:
         ax.set_visible(False)

@@ -33,6 +33,31 @@ LINE_STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)), (0, (1, 3)))
 MARKERS = ("o", "s", "^", "v", "D", "P", "X", "*")
 
 
+# Log-axis error bars (log_errorbar): series k of n at the same x sit DODGE^(k - (n-1)/2) apart.
+DODGE = 10 ** 0.015
+# The foot of a bar whose interval reaches 0: an arrow glyph, unlike every integrator's marker.
+ZERO_MARK = r"$\downarrow$"
+
+
+def log_errorbar(ax, xs, ys, half, index=0, count=1, dodge=True, log_y=True, **kwargs):
+    """ax.errorbar of means ys with 95 % half-widths. On a log y axis (`log_y`) a lower end at or
+    below 0 cannot be drawn (matplotlib ran the bar to the panel's edge), so that bar stops at a
+    tenth of its mean and ends in a down arrow, "reaches 0"; with `dodge`, series `index` of
+    `count` is moved a little along a log x axis, so that bars of methods at the same step do not
+    hide each other (the x values stay the steps' in the data, only the drawing moves)."""
+    shift = DODGE ** (index - (count - 1) / 2) if dodge else 1.0
+    xs = [x * shift for x in xs]
+    half = [0.0 if h != h else h for h in half]  # nan (one run): no bar
+    reaches_zero = [log_y and h >= y > 0 for y, h in zip(ys, half)]
+    lower = [0.9 * y if zero else h for y, h, zero in zip(ys, half, reaches_zero)]
+    bars = ax.errorbar(xs, ys, yerr=[lower, half], capsize=3, **kwargs)
+    color = bars.lines[0].get_color()
+    ends = [(x, 0.1 * y) for x, y, zero in zip(xs, ys, reaches_zero) if zero]
+    if ends:
+        ax.plot(*zip(*ends), ls="none", marker=ZERO_MARK, color=color, ms=9)
+    return bars
+
+
 def integrator_color(row, default=None):
     """The colour of a run's integrator (default for unknown names)."""
     return INTEGRATOR_COLORS.get(row.get("integrator.name") or row.get("integrator"), default)

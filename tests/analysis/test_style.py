@@ -1,0 +1,52 @@
+"""The figures' shared drawing rules (analysis/drapeanalysis/style.py) on synthetic points."""
+import math
+import unittest
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from drapeanalysis import style
+
+
+class LogErrorBarTest(unittest.TestCase):
+    def bars(self, ax, **kwargs):
+        # Two points of one series: the first interval stays above 0, the second reaches it.
+        return style.log_errorbar(ax, [1e-3, 1e-2], [2.0, 1.0], [1.0, 3.0], **kwargs)
+
+    def test_an_interval_reaching_zero_ends_in_an_arrow_at_a_tenth_of_its_mean(self):
+        fig, ax = plt.subplots()
+        ax.set_yscale("log")
+        bars = self.bars(ax, dodge=False)
+        segments = bars.lines[2][0].get_segments()
+        # The first bar spans mean +- half; the second from a tenth of its mean to mean + half.
+        np.testing.assert_allclose(segments[0][:, 1], [1.0, 3.0])
+        np.testing.assert_allclose(segments[1][:, 1], [0.1, 4.0])
+        arrows = [line for line in ax.lines if line.get_marker() == style.ZERO_MARK]
+        self.assertEqual(len(arrows), 1)
+        np.testing.assert_allclose(arrows[0].get_xydata(), [[1e-2, 0.1]])
+        plt.close(fig)
+
+    def test_on_a_linear_axis_the_interval_is_drawn_as_it_is(self):
+        fig, ax = plt.subplots()
+        bars = self.bars(ax, dodge=False, log_y=False)
+        np.testing.assert_allclose(bars.lines[2][0].get_segments()[1][:, 1], [-2.0, 4.0])
+        self.assertFalse([line for line in ax.lines if line.get_marker() == style.ZERO_MARK])
+        plt.close(fig)
+
+    def test_series_at_the_same_step_are_dodged_symmetrically_on_the_log_axis(self):
+        fig, ax = plt.subplots()
+        xs = [bar.lines[0].get_xdata()[0] for bar in
+              (self.bars(ax, index=k, count=3) for k in range(3))]
+        ratios = [math.log10(x / 1e-3) for x in xs]
+        np.testing.assert_allclose(ratios, [-0.015, 0.0, 0.015], atol=1e-12)
+        plt.close(fig)
+
+    def test_a_single_run_has_no_bar(self):
+        fig, ax = plt.subplots()
+        bars = style.log_errorbar(ax, [1.0], [2.0], [math.nan], dodge=False)
+        np.testing.assert_allclose(bars.lines[2][0].get_segments()[0][:, 1], [2.0, 2.0])
+        plt.close(fig)
+
+
+if __name__ == "__main__":
+    unittest.main()
