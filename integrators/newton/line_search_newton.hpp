@@ -13,7 +13,7 @@
 // until the direction descends (a trust-region step that follows A's negative curvature, where
 // S treats it as zero curvature and creeps: docs/integrators.md, "What the failing stages look
 // like"). The local phase's systems are factorised (sparse LU) or, with ExactSolve::bicgstab,
-// solved by BiCGSTAB preconditioned by S's preconditioner to the same forcing term as CG on S,
+// solved by BiCGSTAB preconditioned by S's preconditioner to the cap of CG's forcing term,
 // the LU taking over where BiCGSTAB does not converge. The stage is solved when the update's
 // weighted RMS norm (ARKODE's error weights) times rate / (1 - rate), the error it leaves at the
 // observed rate, is at most `tolerance` (ARKODE's test, arkStep_NlsConvTest, with that factor
