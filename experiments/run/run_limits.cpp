@@ -1,5 +1,7 @@
 #include "experiments/run/run_limits.hpp"
 
+#include <unistd.h>
+
 #include <cmath>
 
 #include <fmt/format.h>
@@ -19,11 +21,43 @@ void check_advances(const Scene& scene, const std::string& field, double step) {
                          nlohmann::json(scene.duration).dump() + " s (at least duration x 2^-50)");
 }
 
+// The sparse LDLT of S (linear_solver sparse-direct) on an n-particle grid, peak resident
+// memory of a one-step run: 129 MB at 128 x 128, 512 MB at 256 x 256, 2.42 GB at 512 x 512
+// (/usr/bin/time, docs/scene.md "Limits"); the growth per fourfold grid rose from n^0.99 to
+// n^1.12, so beyond 512 x 512 it is taken as n^1.25, above what was measured.
+double sparse_direct_bytes(double particles) {
+  constexpr double measured_particles = 512.0 * 512.0, measured_bytes = 2.42e9;
+  const double ratio = particles / measured_particles;
+  return measured_bytes * (ratio <= 1.0 ? ratio : std::pow(ratio, 1.25));
+}
+
+double physical_memory_bytes() {
+  return static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+         static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+}
+
 }  // namespace
+
+void check_linear_solver_memory(const Scene& scene, const IntegratorOptions& options,
+                                const std::string& integrator_field, double available_bytes) {
+  if (options.linear_solver != "sparse-direct") return;  // never the default
+  const double particles =
+      static_cast<double>(scene.cloth.rows) * static_cast<double>(scene.cloth.cols);
+  const double needed = sparse_direct_bytes(particles);
+  if (needed > available_bytes)
+    throw InputError(scene.file, integrator_field + ".linear_solver",
+                     fmt::format("sparse-direct for a {} x {} cloth needs about {:.3g} GB (its "
+                                 "factor grows faster than the particles: 2.42 GB measured at 512 "
+                                 "x 512), more than this machine's {:.3g} GB; use pcg-multigrid "
+                                 "or pcg-reduced",
+                                 scene.cloth.rows, scene.cloth.cols, needed / 1e9,
+                                 available_bytes / 1e9));
+}
 
 void check_run_limits(const Scene& scene, const IntegratorOptions& options,
                       const std::string& integrator_field) {
   check_advances(scene, integrator_field + ".dt", options.dt);
+  check_linear_solver_memory(scene, options, integrator_field, physical_memory_bytes());
   // A fixed step longer than the run would be cut to the duration: the run would not take the
   // step its scene names.
   if (!options.adaptive && scene.duration > 0.0 && options.dt > scene.duration)

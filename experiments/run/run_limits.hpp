@@ -16,6 +16,12 @@ namespace drape {
 void check_run_limits(const Scene& scene, const IntegratorOptions& options,
                       const std::string& integrator_field = "integrator");
 
+/// Throws InputError naming the scene file and integrator.linear_solver when sparse-direct's
+/// factorisation of the scene's cloth would need more than `available_bytes` (the measured
+/// growth, run_limits.cpp); check_run_limits passes the machine's physical memory.
+void check_linear_solver_memory(const Scene& scene, const IntegratorOptions& options,
+                                const std::string& integrator_field, double available_bytes);
+
 /// The most frames that events can add to trace.csv, frames/ and event_trace/ (a frame at each
 /// step that ends on an event) for a run driven by `track` (docs/outputs.md, "Event frames").
 double event_frames_bound(const HandTrack& track);

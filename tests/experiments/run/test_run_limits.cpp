@@ -37,6 +37,33 @@ TEST(RunLimits, AStepThatCannotAdvanceTimeIsAnInputError) {
             "least duration x 2^-50)");
 }
 
+// sparse-direct's factor grows faster than the particles (2.42 GB measured at 512 x 512): a
+// grid whose factor the machine cannot hold is refused before anything runs (it ended in
+// std::bad_alloc after 15 GB, exit 1, with a partial energy.csv).
+TEST(RunLimits, ASparseDirectFactorBeyondTheMachinesMemoryIsAnInputError) {
+  const auto error_with = [](int rows, int cols, const std::string& solver, double memory) {
+    Scene scene = scene_with(R"({"name": "implicit-euler", "dt": 0.01, "linear_solver": ")" +
+                                 solver + R"("})",
+                             0.1);
+    scene.cloth.rows = rows;
+    scene.cloth.cols = cols;
+    const IntegratorOptions options =
+        read_integrator_options(scene.integrator, scene.file, "integrator");
+    return testing::input_error_message(
+        [&] { check_linear_solver_memory(scene, options, "integrator", memory); });
+  };
+  // 4 000 000 particles: 2.42 GB x (4e6 / 512^2)^1.25 = 73.0 GB.
+  EXPECT_EQ(error_with(2000, 2000, "sparse-direct", 24e9),
+            "scene.json: integrator.linear_solver: sparse-direct for a 2000 x 2000 cloth needs "
+            "about 73 GB (its factor grows faster than the particles: 2.42 GB measured at 512 x "
+            "512), more than this machine's 24 GB; use pcg-multigrid or pcg-reduced");
+  EXPECT_EQ(error_with(512, 512, "sparse-direct", 24e9), "no error");
+  EXPECT_EQ(error_with(512, 512, "sparse-direct", 2e9).substr(0, 90),
+            "scene.json: integrator.linear_solver: sparse-direct for a 512 x 512 cloth needs about "
+            "2.42");
+  EXPECT_EQ(error_with(2000, 2000, "pcg-multigrid", 24e9), "no error");
+}
+
 TEST(RunLimits, StepsImpliedByDurationAreCheckedAgainstMaxSteps) {
   EXPECT_EQ(error_for(R"({"name": "leapfrog", "dt": 1e-3, "max_steps": 999})", 1.0),
             "scene.json: integrator.dt: duration / dt = 1000.0 steps, more than "
