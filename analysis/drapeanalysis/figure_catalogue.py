@@ -36,11 +36,11 @@ CAPTIONS = {
 
 # Appended to the captions of the figures whose bars stand on a log axis (style.log_errorbar),
 # and of those among them whose series share x values (steps, horizons) and are dodged.
-CAPTIONS["work_precision"] += " An arrow at a bar's foot: its 95 % interval reaches 0, which a log axis cannot show."
+_ARROW = " An arrow at a bar's foot: its 95 % interval reaches 0, which a log axis cannot show"
+CAPTIONS["work_precision"] += _ARROW + "."
 for _name in ("restart_error_vs_horizon", "attach_error_vs_iterations", "attach_error_vs_time",
               "vibration_vs_dt", "contact_switch_vs_dt"):
-    CAPTIONS[_name] += (" An arrow at a bar's foot: its 95 % interval reaches 0, which a log axis "
-                        "cannot show; series at the same x are drawn slightly apart.")
+    CAPTIONS[_name] += _ARROW + "; series at the same x are drawn slightly apart."
 
 
 # The experiment's `metrics` (docs/experiments.md) each figure belongs to.

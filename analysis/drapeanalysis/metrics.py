@@ -122,9 +122,14 @@ def vibration(run, summary, window=VIBRATION_WINDOW):
     # does not complete) runs 0.5 s: the same metric over windows of different lengths.
     ends = sorted({float(e["t"]) for e in summary.get("events", [])
                    if e.get("type") not in ("ignored", "attach_fixed")})
+
+    def next_end(t0):
+        """The input's next event after t0, else the run's end."""
+        return next((t for t in ends if t > t0 + 1e-12), end)
+
     windows = []
     for t0 in times:
-        t1 = min([t0 + window, end] + [t for t in ends if t > t0 + 1e-12][:1])
+        t1 = min(t0 + window, next_end(t0), end)
         windows.append(vibration_window(after_events, t0, t1, cutoff, hands))
         windows[-1]["events"] = "+".join(sorted({e["type"] for e in summary.get("events", [])
                                                  if e.get("type") != "ignored" and float(e["t"]) == t0}))
@@ -150,8 +155,7 @@ def vibration(run, summary, window=VIBRATION_WINDOW):
     holding = []
     holds = sorted(float(e["t"]) for e in summary.get("events", []) if e.get("type") == "hold")
     for t0 in holds:
-        later = [t for t in ends if t > t0 + 1e-12]
-        t1 = min(later[0] if later else end, end)
+        t1 = min(next_end(t0), end)
         if t1 - (t0 + window) >= window:
             holding.append(vibration_window(trace, t0 + window, t1, cutoff, hands))
     holding = [w for w in holding if math.isfinite(w.get("vibration_rms", math.nan))]

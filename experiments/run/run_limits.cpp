@@ -8,6 +8,7 @@
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/scene_limits.hpp"
+#include "integrators/newton/reduced_newton_solver.hpp"
 
 namespace drape {
 
@@ -25,9 +26,11 @@ void check_advances(const Scene& scene, const std::string& field, double step) {
 // memory of a one-step run: 129 MB at 128 x 128, 512 MB at 256 x 256, 2.42 GB at 512 x 512
 // (/usr/bin/time, docs/scene.md "Limits"); the growth per fourfold grid rose from n^0.99 to
 // n^1.12, so beyond 512 x 512 it is taken as n^1.25, above what was measured.
+constexpr int measured_side = 512;
+constexpr double measured_bytes = 2.42e9;
+
 double sparse_direct_bytes(double particles) {
-  constexpr double measured_particles = 512.0 * 512.0, measured_bytes = 2.42e9;
-  const double ratio = particles / measured_particles;
+  const double ratio = particles / (double{measured_side} * measured_side);
   return measured_bytes * (ratio <= 1.0 ? ratio : std::pow(ratio, 1.25));
 }
 
@@ -40,17 +43,18 @@ double physical_memory_bytes() {
 
 void check_linear_solver_memory(const Scene& scene, const IntegratorOptions& options,
                                 const std::string& integrator_field, double available_bytes) {
-  if (options.linear_solver != "sparse-direct") return;  // never the default
+  if (reduced_solve_named(linear_solver_of(options)) != ReducedSolve::sparse_ldlt) return;
   const double particles =
       static_cast<double>(scene.cloth.rows) * static_cast<double>(scene.cloth.cols);
   const double needed = sparse_direct_bytes(particles);
   if (needed > available_bytes)
     throw InputError(scene.file, integrator_field + ".linear_solver",
                      fmt::format("sparse-direct for a {} x {} cloth needs about {:.3g} GB (its "
-                                 "factor grows faster than the particles: 2.42 GB measured at 512 "
-                                 "x 512), more than this machine's {:.3g} GB; use pcg-multigrid "
-                                 "or pcg-reduced",
+                                 "factor grows faster than the particles: {:.3g} GB measured at "
+                                 "{} x {}), more than this machine's {:.3g} GB; use "
+                                 "pcg-multigrid or pcg-reduced",
                                  scene.cloth.rows, scene.cloth.cols, needed / 1e9,
+                                 measured_bytes / 1e9, measured_side, measured_side,
                                  available_bytes / 1e9));
 }
 
