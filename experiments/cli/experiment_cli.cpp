@@ -75,11 +75,8 @@ int experiment_command(const std::string& file, const std::string& out_dir, int 
     return 0;
   }
   const ExperimentTally t = run_experiment(experiment, options);
-  std::cerr << fmt::format(
-      "drapelab: {}: {} runs{}: {} ok, {} diverged or failed, {} could not run, {} crashed, "
-      "{} resumed\n",
-      experiment.name, t.planned, options.shard ? " in shard " + shard : "", t.ok, t.unstable,
-      t.errors, t.crashed, t.skipped);
+  std::cerr << fmt::format("drapelab: {}: {} runs{}: {}\n", experiment.name, t.planned,
+                           options.shard ? " in shard " + shard : "", t.summary());
   return t.errors + t.crashed > 0 ? 1 : 0;
 }
 

@@ -222,10 +222,7 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
         nlohmann::json row = ended_row(*slice[pending[p]], dir_of(p), end);
         const std::string status = row.value("status", "error");
         progress.run_finished(slice[pending[p]]->id, status, false);
-        if (status == "ok") ++tally.ok;
-        else if (status == "error") ++tally.errors;
-        else if (status == "crashed") ++tally.crashed;
-        else ++tally.unstable;
+        tally.count(status);
         rows[pending[p]] = std::move(row);
       },
       [&](std::size_t p) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "experiments/sweep/experiment.hpp"
+#include "experiments/sweep/experiment_tally.hpp"
 
 namespace drape {
 
@@ -18,16 +19,6 @@ struct ExperimentOptions {
   bool progress = false;       ///< show progress on stderr ...
   bool terminal = false;       ///< ... redrawn in place (a terminal) or one line per finished run
   bool overwrite = false;      ///< clear out_dir's run and experiment files once the plan is valid
-};
-
-/// What happened to the runs of one invocation.
-struct ExperimentTally {
-  int planned = 0;   ///< runs in this invocation's slice
-  int skipped = 0;   ///< finished before (resumed)
-  int ok = 0;
-  int unstable = 0;  ///< diverged or failed: a result, not an error
-  int errors = 0;    ///< could not run (bad input found late, files, exceptions)
-  int crashed = 0;   ///< the run's process died (signal, abort, out of memory): a bug to report
 };
 
 /// Runs the experiment's plan (or one shard of it) into options.out_dir and writes the table:

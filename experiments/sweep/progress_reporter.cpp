@@ -51,12 +51,10 @@ void ProgressReporter::run_progress(const std::string& id, double fraction) {
 void ProgressReporter::run_finished(const std::string& id, const std::string& status,
                                     bool resumed) {
   m_running.erase(id);
-  if (resumed) ++m_resumed;
-  else if (status == "ok") ++m_ok;
-  else if (status == "error") ++m_errors;
-  else ++m_unstable;
+  if (resumed) ++m_tally.skipped;
+  else m_tally.count(status);
   if (m_style != ProgressStyle::Lines) return;
-  const int done = m_ok + m_unstable + m_errors + m_resumed;
+  const int done = m_tally.done();
   const double now = elapsed();
   const double left = seconds_left(now);
   m_out << fmt::format("drapelab: [{}/{}] {} {}{}, {} elapsed{}\n", done, m_total, id, status,
@@ -92,28 +90,28 @@ double ProgressReporter::elapsed() const {
 
 double ProgressReporter::seconds_left(double elapsed) const {
   // Resumed runs cost nothing now: they are neither work done nor work left.
-  const double work = m_total - m_resumed;
-  double done = m_ok + m_unstable + m_errors;
+  const double work = m_total - m_tally.skipped;
+  double done = m_tally.done() - m_tally.skipped;
   for (const auto& [id, fraction] : m_running) done += fraction;
   if (done <= 0.0) return -1.0;
   return elapsed * std::max(0.0, work - done) / done;
 }
 
 std::vector<std::string> ProgressReporter::block(int width, double elapsed) const {
-  const int done = m_ok + m_unstable + m_errors + m_resumed;
+  const int done = m_tally.done();
   const double left = seconds_left(elapsed);
   const int bar = 20;
   const int filled = m_total > 0 ? bar * done / m_total : bar;
   std::vector<std::string> lines;
-  lines.push_back(fit(fmt::format("[{}{}] {}/{}  ok {}  unstable {}  error {}  {}  ~{} left",
+  lines.push_back(fit(fmt::format("[{}{}] {}/{}  {} elapsed, ~{} left",
                                   std::string(static_cast<std::size_t>(filled), '#'),
                                   std::string(static_cast<std::size_t>(bar - filled), '-'), done,
-                                  m_total, m_ok + m_resumed, m_unstable, m_errors, clock(elapsed),
-                                  left >= 0.0 ? clock(left) : "--:--"),
+                                  m_total, clock(elapsed), left >= 0.0 ? clock(left) : "--:--"),
                       width));
+  lines.push_back(fit("  " + m_tally.summary(), width));
   const int id_width = std::max(8, width - 2 - 6);
   for (const auto& [id, fraction] : m_running) {
-    if (lines.size() > max_running_lines) {
+    if (lines.size() > max_running_lines + 1) {
       lines.push_back(fit(fmt::format("  ... and {} more running",
                                       m_running.size() - max_running_lines),
                           width));

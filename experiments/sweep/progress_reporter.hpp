@@ -2,7 +2,7 @@
 // The progress of an experiment on stderr (docs/experiments.md, "Progress"). The experiment's
 // one thread tells it when runs start, how far they are (each child's progress.json, read on
 // the runner's timer) and when they finish; the reporter decides how to show it: on a terminal
-// a block redrawn in place on each redraw() (bar, counts, time left, the running runs),
+// a block redrawn in place on each redraw() (bar, time left, the counts, the running runs),
 // elsewhere one line per finished run, so logs stay readable. It starts no thread: the runner
 // forks its runs, and forking a process with more than one thread is fragile.
 #include <chrono>
@@ -10,6 +10,8 @@
 #include <ostream>
 #include <string>
 #include <vector>
+
+#include "experiments/sweep/experiment_tally.hpp"
 
 namespace drape {
 
@@ -50,7 +52,7 @@ class ProgressReporter {
   std::ostream& m_out;
   std::chrono::steady_clock::time_point m_start;
   bool m_finished = false;
-  int m_ok = 0, m_unstable = 0, m_errors = 0, m_resumed = 0;
+  ExperimentTally m_tally;  ///< counted and said as the final line does
   std::map<std::string, double> m_running;  ///< id -> fraction done
   int m_drawn_lines = 0;
 };

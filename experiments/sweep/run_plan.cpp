@@ -33,8 +33,23 @@ std::uint64_t fnv1a(std::string_view text, std::uint64_t h = 1469598103934665603
   return h;
 }
 
-std::string slug_part(const nlohmann::json& value) {
-  std::string text = value.is_string() ? value.get<std::string>() : value.dump();
+// One value's part of a run id, readable without the plan: a word as it is (SUNDIALS' table
+// names without the "ARKODE_" that all of them share), a flag as its key or "no-" and its key,
+// a number after its key ("dt0.0005", "seed2"); the key is the last part of its dotted name.
+constexpr std::size_t max_slug_bytes = 120;
+
+std::string slug_part(const std::string& key, const nlohmann::json& value) {
+  const std::string label = key.substr(key.rfind('.') + 1);
+  std::string text;
+  if (value.is_string()) {
+    text = value.get<std::string>();
+    constexpr std::string_view arkode = "ARKODE_";
+    if (text.rfind(arkode, 0) == 0 && text.size() > arkode.size()) text.erase(0, arkode.size());
+  } else if (value.is_boolean()) {
+    text = value.get<bool>() ? label : "no-" + label;
+  } else {
+    text = label + value.dump();
+  }
   for (char& ch : text)
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '-' || ch == '+'))
       ch = '_';
@@ -147,11 +162,12 @@ std::string run_id(const RunSpec& run) {
   std::string slug = std::filesystem::path(run.scene).stem().string();
   if (run.is_reference) slug += "-reference";
   if (run.bisect) slug += "-bisect";
-  for (const auto& [key, value] : run.parameters) slug += "-" + slug_part(value);
+  for (const auto& [key, value] : run.parameters) slug += "-" + slug_part(key, value);
   // Cut at a character's start: half a UTF-8 sequence in the id would not survive a round trip
   // through run.json (its bytes replaced), so resume and merge would never find the run again.
-  if (slug.size() > 72) {
-    std::size_t end = 72;
+  // 120 bytes keep a scene's name and five values (a folder name may have 255).
+  if (slug.size() > max_slug_bytes) {
+    std::size_t end = max_slug_bytes;
     while (end > 0 && (static_cast<unsigned char>(slug[end]) & 0xC0) == 0x80) --end;
     slug.resize(end);
   }

@@ -45,7 +45,7 @@ TEST(ExperimentPlan, RunIdsAreStableUniqueAndIndependentOfPlanPosition) {
   // The id of one run is a fixed function of its definition: pinned here so that a change to
   // the hashing, which would orphan every finished folder, is deliberate.
   EXPECT_EQ(plan[0].id, drape::run_id(plan[0]));
-  EXPECT_EQ(plan[0].id.rfind("cloth-0.001-leapfrog-", 0), 0u) << plan[0].id;
+  EXPECT_EQ(plan[0].id.rfind("cloth-dt0.001-leapfrog-", 0), 0u) << plan[0].id;
 
   json more = two_by_three();
   more["sweep"]["integrator.dt"] = json::array({0.0005, 0.001, 0.002, 0.0025});
@@ -98,23 +98,39 @@ TEST(ExperimentPlan, EditingAFileTheSceneNamesChangesItsRunIds) {
     EXPECT_FALSE(run.to_json().contains("file_digests")) << run.id;
 }
 
-// A long scene name is cut to 72 bytes at a character's start, so the id stays valid UTF-8 and
+// A long scene name is cut to 120 bytes at a character's start, so the id stays valid UTF-8 and
 // survives run.json (cut inside a character, resume and merge never found the run again).
 TEST(ExperimentPlan, ALongNonAsciiSceneNameIsCutAtACharacter) {
   const fs::path dir = temp_dir("utf8");
   std::string name;
-  for (int k = 0; k < 30; ++k) name += "\xc3\xa9";  // e-acute, two bytes each: 60 bytes
-  name += "abc";                                    // 63 bytes, then more e-acutes past 72
+  for (int k = 0; k < 58; ++k) name += "\xc3\xa9";  // e-acute, two bytes each: 116 bytes
+  name += "abc";                                    // 119 bytes, then more e-acutes past 120
   for (int k = 0; k < 10; ++k) name += "\xc3\xa9";
   fs::copy_file(write_scene(dir), dir / (name + ".json"));
   json source = two_by_three();
   source["scenes"] = json::array({name + ".json"});
   for (const auto& run : drape::expand_runs(parse(source, dir))) {
     const std::string slug = run.id.substr(0, run.id.rfind('-'));
-    EXPECT_EQ(slug.substr(0, 63), name.substr(0, 63));
-    EXPECT_LE(slug.size(), 72u);
+    EXPECT_EQ(slug, name.substr(0, 119));
     EXPECT_EQ(json(run.id).dump(), "\"" + run.id + "\"") << "valid UTF-8";
   }
+}
+
+// A run id reads without the plan: each value after its key, a flag as its key, and a table
+// name without the "ARKODE_" every SUNDIALS table carries, so that the values that tell runs
+// apart fit (the main job's ids cut the table name and lost the seed, with a bare "false").
+TEST(ExperimentPlan, RunIdsNameEachValue) {
+  const fs::path dir = temp_dir("readable_ids");
+  write_scene(dir);
+  const json source = json::parse(R"({"name": "e", "scenes": ["cloth.json"], "repeats": 1,
+      "cases": [{"integrator.name": "arkode-erk", "integrator.adaptive": false,
+                 "integrator.table": "ARKODE_BOGACKI_SHAMPINE_4_2_3", "integrator.dt": 0.0005},
+                {"integrator.name": "arkode-erk", "integrator.adaptive": true}]})");
+  const auto plan = drape::expand_runs(parse(source, dir));
+  ASSERT_EQ(plan.size(), 2u);
+  const auto slug = [](const std::string& id) { return id.substr(0, id.rfind('-')); };
+  EXPECT_EQ(slug(plan[0].id), "cloth-no-adaptive-dt0.0005-arkode-erk-BOGACKI_SHAMPINE_4_2_3-seed1");
+  EXPECT_EQ(slug(plan[1].id), "cloth-adaptive-arkode-erk-seed1");
 }
 
 // An ensemble perturbs every repeat: when one case gives its own position, the other cases

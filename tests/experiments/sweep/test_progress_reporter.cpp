@@ -42,17 +42,32 @@ TEST(ProgressReporter, BlockFitsEightyColumnsAndNamesTheRunningRuns) {
   progress.run_progress(long_id, 0.42);
   progress.run_started("short");
   const auto lines = progress.block(79, 5.0);
-  ASSERT_EQ(lines.size(), 3u);
+  ASSERT_EQ(lines.size(), 4u);
   for (const auto& line : lines) EXPECT_LE(line.size(), 79u) << line;
   // 0.42 of 3 runs in 5 s: 2.58 / 0.42 x 5 s = 30.7 s left.
-  EXPECT_EQ(lines[0], "[--------------------] 0/3  ok 0  unstable 0  error 0  0:05  ~0:31 left");
+  EXPECT_EQ(lines[0], "[--------------------] 0/3  0:05 elapsed, ~0:31 left");
+  EXPECT_EQ(lines[1], "  0 ok, 0 diverged or failed, 0 could not run, 0 crashed, 0 resumed");
   // A long id keeps its start and its end (the values and hash that tell runs apart).
-  EXPECT_EQ(lines[1].rfind("  integrator.name=arkode-dirk", 0), 0u) << lines[1];
-  EXPECT_EQ(lines[1].size(), 79u);
-  EXPECT_EQ(lines[1].substr(36, 3), "...") << lines[1];  // 34 characters either side
-  EXPECT_EQ(lines[1].substr(79 - 15), "-58e3f3fb   42%") << lines[1];
-  EXPECT_NE(lines[2].find("short"), std::string::npos);
-  EXPECT_NE(lines[2].find("0%"), std::string::npos);
+  EXPECT_EQ(lines[2].rfind("  integrator.name=arkode-dirk", 0), 0u) << lines[2];
+  EXPECT_EQ(lines[2].size(), 79u);
+  EXPECT_EQ(lines[2].substr(36, 3), "...") << lines[2];  // 34 characters either side
+  EXPECT_EQ(lines[2].substr(79 - 15), "-58e3f3fb   42%") << lines[2];
+  EXPECT_NE(lines[3].find("short"), std::string::npos);
+  EXPECT_NE(lines[3].find("0%"), std::string::npos);
+}
+
+// The block counts in the final line's words, each status in its own class: a crashed run was
+// counted as "unstable" beside the diverged ones, and the words differed from the final tally.
+TEST(ProgressReporter, BlockCountsEachStatusAsTheFinalLineDoes) {
+  std::ostringstream out;
+  drape::ProgressReporter progress(6, drape::ProgressStyle::Off, out);
+  const char* statuses[] = {"ok", "diverged", "failed", "error", "crashed"};
+  for (const char* status : statuses) progress.run_finished(status, status, false);
+  progress.run_finished("earlier", "ok", true);
+  const auto lines = progress.block(79, 5.0);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[0], "[####################] 6/6  0:05 elapsed, ~0:00 left");
+  EXPECT_EQ(lines[1], "  1 ok, 2 diverged or failed, 1 could not run, 1 crashed, 1 resumed");
 }
 
 TEST(ProgressReporter, TerminalRedrawsInPlaceOnRequest) {
@@ -68,9 +83,9 @@ TEST(ProgressReporter, TerminalRedrawsInPlaceOnRequest) {
   EXPECT_NE(first.find("50%"), std::string::npos) << first;
   progress.run_progress("x", 0.75);
   progress.redraw();
-  // Up one line (the block has two), clear, draw again.
+  // Up two lines (the block has three), clear, draw again.
   const std::string second = out.str().substr(first.size());
-  EXPECT_EQ(second.rfind("\x1b[1A\r\x1b[J[", 0), 0u) << second;
+  EXPECT_EQ(second.rfind("\x1b[2A\r\x1b[J[", 0), 0u) << second;
   EXPECT_NE(second.find("75%"), std::string::npos) << second;
   progress.run_finished("x", "ok", false);
   progress.finish();
