@@ -212,7 +212,15 @@
     this.set_playing(false);
     var played = this.t - slider_t;
     document.querySelector('[data-camera="side"]').click();
-    return { slider_t: slider_t, played: played, camera: this.camera_kind };
+    // The lines of each button's label: its content height over its line height.
+    var lines = {};
+    document.querySelectorAll('button').forEach(function (b) {
+      var style = getComputedStyle(b), px = function (v) { return parseFloat(v) || 0; };
+      var content = b.getBoundingClientRect().height - px(style.paddingTop) - px(style.paddingBottom) -
+                    px(style.borderTopWidth) - px(style.borderBottomWidth);
+      lines[b.textContent.trim()] = Math.round(content / px(style.lineHeight));
+    });
+    return { slider_t: slider_t, played: played, camera: this.camera_kind, button_lines: lines };
   };
 
   function write_test_result(result) {

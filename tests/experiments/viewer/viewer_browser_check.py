@@ -60,7 +60,9 @@ def main():
     # The interval does not divide the duration: the last frame is at 0.7999992 s, before the end.
     common = ["--set", "duration=0.8", "--set", "output.trace_interval=0.0333333"]
     run([drapelab, "run", scene, "--out", work / "leapfrog"] + common)
-    run([drapelab, "run", scene, "--out", work / "implicit_euler"] + common +
+    # A name as long as an experiment's run ids: the legend beside the energy buttons wraps.
+    implicit = work / "fig2_hold-dt0.002-implicit-euler-a-name-as-long-as-a-run-id-seed1-0123abcd"
+    run([drapelab, "run", scene, "--out", implicit] + common +
         ["--set", "integrator.name=implicit-euler", "--set", "integrator.dt=0.002"])
 
     # Not a run, and a malformed trace: exit 2, the message names the folder / the file.
@@ -76,7 +78,7 @@ def main():
         fail("malformed trace: message does not name the file and line: " + message)
 
     page = work / "page.html"
-    run([drapelab, "view", work / "leapfrog", work / "implicit_euler", "--out", page])
+    run([drapelab, "view", work / "leapfrog", implicit, "--out", page])
     url = page.resolve().as_uri() + "#test&" + "&".join(f"t={t}" for t in TIMES)
     dom = run([chromium] + CHROMIUM_FLAGS + ["--dump-dom", url]).stdout
     (work / "dom.html").write_text(dom)
@@ -107,6 +109,11 @@ def main():
     ui = result["ui"]
     if abs(ui["slider_t"] - 0.2) > 1e-9 or abs(ui["played"] - 0.5) > 1e-9 or ui["camera"] != "side":
         fail("the slider, play or camera buttons do not work: " + json.dumps(ui))
+    # No button's label wraps at 800 px ("total - E(0)" did, on three lines, beside a legend of
+    # run ids).
+    lines = ui.get("button_lines", {})
+    if len(lines) < 6 or set(lines.values()) != {1}:
+        fail("a button's label is not on one line (lines a button): " + json.dumps(lines))
     # A run with its final state only (no trace.csv) opens at its end, where that state is: it
     # opened at t = 0, the final cloth beside the hands of t = 0.
     run([drapelab, "run", scene, "--out", work / "final_only", "--set", "duration=0.8",
