@@ -27,21 +27,9 @@ try:
 except ImportError:  # drapelab report checks for matplotlib and numpy only
     sys.exit("report.py needs pandas (Debian: apt install python3-pandas; install_dependencies.sh installs it)")
 
-from drapeanalysis import metrics, plots, report_options, runfiles, stats, viewer_pages  # noqa: E402
+from drapeanalysis import metrics, plots, report_options, runfiles, stats, table_columns, viewer_pages  # noqa: E402
 from drapeanalysis.fileio import OutputError, atomic_output, output_folder  # noqa: E402
 from drapeanalysis.figure_catalogue import CAPTIONS, FIGURE_METRIC  # noqa: E402
-
-# Columns of the report's table besides the parameters; every column is in metrics.csv.
-TABLE_COLUMNS = (
-    "status", "steps", "rhs_evals", "wall_seconds", "energy_drift_max_rel",
-    "energy_drift_final_rel", "energy_drift_exponent", "attach_error_mean", "vibration_rms_final",
-    "vibration_rms_events", "vibration_rms_holding", "hand_jitter_rms_holding", "settle_time", "contact_switch_rate_final", "hand_jitter_rms_final",
-    "mapping_gap_mean_mapped", "mapping_gap_mean_final", "mapping_gap_max_final",
-    "spring_strain_rms_mapped", "spring_strain_rms_final", "spring_strain_max_final",
-    "restart_error_start", "restart_error_events", "short_error_start", "short_error_events", "error_rms",
-    "error_max", "stable_value", "slow_motion_rms_final", "vibration_cutoff_hz",
-)
-
 
 # The summary's method x scene tables: column, title, unit, scale to that unit.
 SUMMARY_METRICS = (
@@ -227,9 +215,10 @@ def viewer_html(rows, parameters, pages):
 def html_table(rows, parameters, pages=None):
     """The results as an HTML table: id, its viewer page (or why none), parameters, the main
     metrics present."""
-    present = [c for c in TABLE_COLUMNS if any(clean(r.get(c)) not in (None, "") for r in rows)]
+    present = [c for c in table_columns.TABLE_COLUMNS if any(clean(r.get(c)) not in (None, "") for r in rows)]
     columns = ["id"] + list(parameters) + present
-    head = "".join(f"<th>{html.escape(c)}</th>" for c in columns[:1] + ["3-D"] * (pages is not None) + columns[1:])
+    head = "".join(f"<th>{html.escape(table_columns.heading(c))}</th>"
+                   for c in columns[:1] + ["3-D"] * (pages is not None) + columns[1:])
     body = []
     for row in rows:
         cells = []

@@ -307,7 +307,7 @@ def restart_error_vs_horizon(directory, out_dir, rows, parameters):
             horizons = sorted(by_horizon)
             _, means, _, half = zip(*(stats.interval(by_horizon[h]) for h in horizons))
             style.log_errorbar(ax, horizons, means, half, k, len(groups), label=name, **styles[name])
-        ax.set_xscale("log")
+        style.log_x_ticks_at(ax, sorted({h for by_horizon in groups.values() for h in by_horizon}))
         ax.set_yscale("log")
         ax.set_title(scene)
         ax.set_xlabel("horizon after the event [s]")

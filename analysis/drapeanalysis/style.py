@@ -7,6 +7,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 from .fileio import atomic_output  # noqa: E402
 
@@ -56,6 +57,15 @@ def log_errorbar(ax, xs, ys, half, index=0, count=1, dodge=True, log_y=True, **k
     if ends:
         ax.plot(*zip(*ends), ls="none", marker=ZERO_MARK, color=color, ms=9)
     return bars
+
+
+def log_x_ticks_at(ax, values):
+    """A log x axis with its ticks and labels at `values` only: a decade's ticks left a horizon
+    such as 0.0333 s unlabelled between 0.01 and 0.1."""
+    ax.set_xscale("log")
+    ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator(values))
+    ax.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:.3g}"))
+    ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
 
 
 def integrator_color(row, default=None):

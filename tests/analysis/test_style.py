@@ -48,5 +48,17 @@ class LogErrorBarTest(unittest.TestCase):
         plt.close(fig)
 
 
+
+class LogTicksTest(unittest.TestCase):
+    def test_every_value_is_a_labelled_tick_and_nothing_else(self):
+        fig, ax = plt.subplots()
+        ax.plot([0.0333333, 0.1], [1.0, 2.0])
+        style.log_x_ticks_at(ax, [0.0333333, 0.1])
+        fig.canvas.draw()
+        self.assertEqual([t.get_text() for t in ax.get_xticklabels()], ["0.0333", "0.1"])
+        self.assertEqual(len(ax.xaxis.get_minor_ticks()), 0)
+        plt.close(fig)
+
+
 if __name__ == "__main__":
     unittest.main()

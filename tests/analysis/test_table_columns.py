@@ -1,0 +1,24 @@
+"""The runs table's headings carry units (analysis/drapeanalysis/table_columns.py)."""
+import unittest
+
+from drapeanalysis import table_columns
+
+# Counts, a status, and the bisected parameter's own value: no unit of their own.
+UNITLESS = {"status", "steps", "rhs_evals", "stable_value"}
+
+
+class TableColumnsTest(unittest.TestCase):
+    def test_every_metric_column_but_counts_and_status_has_a_unit(self):
+        missing = [c for c in table_columns.TABLE_COLUMNS
+                   if c not in UNITLESS and c not in table_columns.UNITS]
+        self.assertEqual(missing, [])
+
+    def test_a_heading_puts_the_unit_in_brackets(self):
+        self.assertEqual(table_columns.heading("wall_seconds"), "wall_seconds [s]")
+        self.assertEqual(table_columns.heading("vibration_rms_final"), "vibration_rms_final [m]")
+        self.assertEqual(table_columns.heading("integrator.dt"), "integrator.dt [s]")
+        self.assertEqual(table_columns.heading("steps"), "steps")
+
+
+if __name__ == "__main__":
+    unittest.main()
