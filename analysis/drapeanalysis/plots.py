@@ -266,8 +266,8 @@ def work_precision(out_dir, rows, parameters):
             ax.set_xscale("log")
             ax.set_yscale("log")
             for series_name, series in points.items():  # step sizes, clear of each other
-                style.place_labels(ax, [(x, y) for x, y, *_ in series], [f"{number(dt):g} s" if math.isfinite(number(dt)) else f"{dt}" for *_, dt in series],
-                                   colors[series_name])
+                style.place_labels(ax, [(x, y) for x, y, *_ in series], [f"{number(dt):.3g} s" if math.isfinite(number(dt)) else f"{dt}" for *_, dt in series],
+                                   colors[series_name], half=[h for _, _, h, _ in series])
             ax.set_title(name)
             ax.set_xlabel("right-hand-side evaluations" if key == "rhs_evals" else "wall time [s]")
             ax.grid(True, which="both", alpha=0.3)

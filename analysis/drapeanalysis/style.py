@@ -125,10 +125,12 @@ def _overlap(a, b):
     return max(0.0, min(a[2], b[2]) - max(a[0], b[0])) * max(0.0, min(a[3], b[3]) - max(a[1], b[1]))
 
 
-def place_labels(ax, points, texts, color):
+def place_labels(ax, points, texts, color, half=None):
     """Annotates data points with short texts, each in the spot around its point (right, left,
-    above, below, the corners) whose box overlaps least the labels and points already placed,
-    so neighbouring labels do not overlap. Call after the axes' scales and limits are final."""
+    above, below, the corners) whose box overlaps least the labels, points and error bars already
+    placed, so neighbouring labels do not overlap and no label covers a bar (`half`: the points'
+    95 % half-widths, drawn by log_errorbar, whose bar stops at a tenth of y when it reaches 0).
+    Call after the axes' scales and limits are final."""
     ax.autoscale_view()
     px_per_pt = ax.figure.dpi / 72
     char, height, gap = 0.62 * MIN_FONT * px_per_pt, 1.2 * MIN_FONT * px_per_pt, 3 * px_per_pt
@@ -137,6 +139,10 @@ def place_labels(ax, points, texts, color):
     boxes = ax._drape_boxes
     screen = [tuple(ax.transData.transform(p)) for p in points]
     boxes += [(x - gap, y - gap, x + gap, y + gap) for x, y in screen]
+    for (x, y), h in zip(points, half or []):
+        if h == h and h > 0:  # nan: one run, no bar
+            (left, low), (_, high) = ax.transData.transform([(x, max(y - h, 0.1 * y)), (x, y + h)])
+            boxes.append((left - gap, low, left + gap, high))
     frame = ax.get_window_extent().extents  # a label outside the axes would cover the ticks
 
     def cost(box):
@@ -148,8 +154,10 @@ def place_labels(ax, points, texts, color):
                  (gap, gap), (gap, -gap - height), (-gap - w, gap), (-gap - w, -gap - height)]
         dx, dy = min(spots, key=lambda d: cost((px + d[0], py + d[1], px + d[0] + w, py + d[1] + height)))
         boxes.append((px + dx, py + dy, px + dx + w, py + dy + height))
-        ax.annotate(text, (x, y), xytext=(dx, dy), textcoords="offset pixels", fontsize=MIN_FONT,
-                    color=color, va="bottom", ha="left")
+        # In points, as the text is: offsets in pixels stayed the screen's at the PNG's 200 dpi
+        # while the text doubled, and labels placed apart overlapped.
+        ax.annotate(text, (x, y), xytext=(dx / px_per_pt, dy / px_per_pt), textcoords="offset points",
+                    fontsize=MIN_FONT, color=color, va="bottom", ha="left")
 
 
 def empty_note(ax, why):

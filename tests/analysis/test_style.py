@@ -60,5 +60,45 @@ class LogTicksTest(unittest.TestCase):
         plt.close(fig)
 
 
+
+class PlaceLabelsTest(unittest.TestCase):
+    def test_labels_placed_apart_stay_apart_at_the_png_resolution(self):
+        # Three points a label's width apart on a log axis: placed on the screen (figure dpi),
+        # the labels must not overlap when drawn at the PNG's 200 dpi (offsets in pixels did).
+        fig, ax = plt.subplots(figsize=(4, 3))
+        xs, ys = [1e2, 1.6e2, 2.6e2], [1e-2, 1.05e-2, 1.1e-2]
+        ax.plot(xs, ys, "o")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        style.place_labels(ax, list(zip(xs, ys)), ["0.0333 s", "0.01 s", "0.0005 s"], "C0")
+        fig.set_dpi(style.DPI)
+        fig.canvas.draw()
+        boxes = [t.get_window_extent() for t in ax.texts]
+        self.assertEqual(len(boxes), 3)
+        for i in range(3):
+            for j in range(i + 1, 3):
+                self.assertFalse(boxes[i].overlaps(boxes[j]), (i, j, boxes[i], boxes[j]))
+        plt.close(fig)
+
+    def test_no_label_covers_an_error_bar(self):
+        # A point with a long bar between two points a label's width away on either side: beside
+        # it the label would cover a neighbour, so it goes above or below, along the bar, unless
+        # the bar counts as an obstacle (it did not); it must cross neither the bar nor a point.
+        fig, ax = plt.subplots(figsize=(4, 3))
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlim(1, 100)
+        ax.set_ylim(1e-4, 1e-1)
+        xs, ys = [6.0, 10.0, 16.0], [1e-2, 1e-2, 1e-2]
+        ax.errorbar(xs, ys, yerr=[[0, 9e-3, 0], [0, 5e-2, 0]], fmt="o")
+        style.place_labels(ax, list(zip(xs, ys)), ["", "0.0333 s", ""], "C0", half=[0.0, 5e-2, 0.0])
+        fig.set_dpi(style.DPI)
+        fig.canvas.draw()
+        label = ax.texts[1].get_window_extent()
+        (bar_x, low), (_, high) = ax.transData.transform([(10.0, 1e-3), (10.0, 6e-2)])
+        crosses_bar = label.x0 < bar_x < label.x1 and label.y0 < high and label.y1 > low
+        self.assertFalse(crosses_bar, (label, bar_x, low, high))
+        plt.close(fig)
+
 if __name__ == "__main__":
     unittest.main()
