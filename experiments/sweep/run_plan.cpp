@@ -33,11 +33,13 @@ std::uint64_t fnv1a(std::string_view text, std::uint64_t h = 1469598103934665603
   return h;
 }
 
+// A run id's readable part before its hash: a scene's name and five values fit (a folder name
+// may have 255 bytes; at 72 the main job's ids lost their table's end and their seed).
+constexpr std::size_t max_slug_bytes = 120;
+
 // One value's part of a run id, readable without the plan: a word as it is (SUNDIALS' table
 // names without the "ARKODE_" that all of them share), a flag as its key or "no-" and its key,
 // a number after its key ("dt0.0005", "seed2"); the key is the last part of its dotted name.
-constexpr std::size_t max_slug_bytes = 120;
-
 std::string slug_part(const std::string& key, const nlohmann::json& value) {
   const std::string label = key.substr(key.rfind('.') + 1);
   std::string text;
@@ -165,7 +167,6 @@ std::string run_id(const RunSpec& run) {
   for (const auto& [key, value] : run.parameters) slug += "-" + slug_part(key, value);
   // Cut at a character's start: half a UTF-8 sequence in the id would not survive a round trip
   // through run.json (its bytes replaced), so resume and merge would never find the run again.
-  // 120 bytes keep a scene's name and five values (a folder name may have 255).
   if (slug.size() > max_slug_bytes) {
     std::size_t end = max_slug_bytes;
     while (end > 0 && (static_cast<unsigned char>(slug[end]) & 0xC0) == 0x80) --end;
