@@ -178,10 +178,9 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
   const nlohmann::json header = experiment_header(experiment, plan);
   write_json(options.out_dir / "experiment.json", header, process_tmp_suffix());
 
-  ExperimentTally tally;
-  tally.planned = static_cast<int>(slice.size());
   std::vector<nlohmann::json> rows(slice.size());
-  ProgressReporter progress(tally.planned,
+  // It counts the runs too: its tally is the invocation's.
+  ProgressReporter progress(static_cast<int>(slice.size()),
                             !options.progress  ? ProgressStyle::Off
                             : options.terminal ? ProgressStyle::Terminal
                                                : ProgressStyle::Lines,
@@ -193,7 +192,6 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
     if (auto row = finished_row(*slice[k], options.out_dir / "runs" / slice[k]->id)) {
       progress.run_finished(slice[k]->id, row->value("status", "error"), true);
       rows[k] = std::move(*row);
-      ++tally.skipped;
     } else {
       pending.push_back(k);
     }
@@ -222,7 +220,6 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
         nlohmann::json row = ended_row(*slice[pending[p]], dir_of(p), end);
         const std::string status = row.value("status", "error");
         progress.run_finished(slice[pending[p]]->id, status, false);
-        tally.count(status);
         rows[pending[p]] = std::move(row);
       },
       [&](std::size_t p) {
@@ -239,7 +236,7 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
   } else {
     write_results_table(options.out_dir / "results", header, rows, "");
   }
-  return tally;
+  return progress.tally();
 }
 
 }  // namespace drape

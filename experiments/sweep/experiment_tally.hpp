@@ -1,6 +1,7 @@
 #pragma once
 // What happened to the runs of one experiment invocation, counted and said in the same words by
-// the progress display and the final line (docs/experiments.md, "Progress").
+// the progress display and the final line (docs/experiments.md, "Parallel runs, progress,
+// resume").
 #include <string>
 
 namespace drape {

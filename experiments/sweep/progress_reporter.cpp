@@ -37,7 +37,9 @@ constexpr int terminal_width = 79;
 }  // namespace
 
 ProgressReporter::ProgressReporter(int total, ProgressStyle style, std::ostream& out)
-    : m_total(total), m_style(style), m_out(out), m_start(std::chrono::steady_clock::now()) {}
+    : m_style(style), m_out(out), m_start(std::chrono::steady_clock::now()) {
+  m_tally.planned = total;
+}
 
 ProgressReporter::~ProgressReporter() { finish(); }
 
@@ -57,8 +59,8 @@ void ProgressReporter::run_finished(const std::string& id, const std::string& st
   const int done = m_tally.done();
   const double now = elapsed();
   const double left = seconds_left(now);
-  m_out << fmt::format("drapelab: [{}/{}] {} {}{}, {} elapsed{}\n", done, m_total, id, status,
-                       resumed ? " (resumed)" : "", clock(now),
+  m_out << fmt::format("drapelab: [{}/{}] {} {}{}, {} elapsed{}\n", done, m_tally.planned, id,
+                       status, resumed ? " (resumed)" : "", clock(now),
                        left >= 0.0 ? ", ~" + clock(left) + " left" : "")
         << std::flush;
 }
@@ -90,7 +92,7 @@ double ProgressReporter::elapsed() const {
 
 double ProgressReporter::seconds_left(double elapsed) const {
   // Resumed runs cost nothing now: they are neither work done nor work left.
-  const double work = m_total - m_tally.skipped;
+  const double work = m_tally.planned - m_tally.skipped;
   double done = m_tally.done() - m_tally.skipped;
   for (const auto& [id, fraction] : m_running) done += fraction;
   if (done <= 0.0) return -1.0;
@@ -101,12 +103,13 @@ std::vector<std::string> ProgressReporter::block(int width, double elapsed) cons
   const int done = m_tally.done();
   const double left = seconds_left(elapsed);
   const int bar = 20;
-  const int filled = m_total > 0 ? bar * done / m_total : bar;
+  const int filled = m_tally.planned > 0 ? bar * done / m_tally.planned : bar;
   std::vector<std::string> lines;
   lines.push_back(fit(fmt::format("[{}{}] {}/{}  {} elapsed, ~{} left",
                                   std::string(static_cast<std::size_t>(filled), '#'),
                                   std::string(static_cast<std::size_t>(bar - filled), '-'), done,
-                                  m_total, clock(elapsed), left >= 0.0 ? clock(left) : "--:--"),
+                                  m_tally.planned, clock(elapsed),
+                                  left >= 0.0 ? clock(left) : "--:--"),
                       width));
   lines.push_back(fit("  " + m_tally.summary(), width));
   const int id_width = std::max(8, width - 2 - 6);

@@ -36,6 +36,9 @@ class ProgressReporter {
   void redraw();
   /// Draws the block a last time and leaves it on the screen.
   void finish();
+  /// The runs counted so far (`planned` = the constructor's `total`), in any style: the
+  /// experiment's final line and return value.
+  const ExperimentTally& tally() const { return m_tally; }
 
   /// The terminal block after `elapsed` seconds: at most `width` columns a line.
   std::vector<std::string> block(int width, double elapsed) const;
@@ -47,7 +50,6 @@ class ProgressReporter {
  private:
   double elapsed() const;
 
-  int m_total;
   ProgressStyle m_style;
   std::ostream& m_out;
   std::chrono::steady_clock::time_point m_start;

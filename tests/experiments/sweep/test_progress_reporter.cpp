@@ -68,6 +68,14 @@ TEST(ProgressReporter, BlockCountsEachStatusAsTheFinalLineDoes) {
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[0], "[####################] 6/6  0:05 elapsed, ~0:00 left");
   EXPECT_EQ(lines[1], "  1 ok, 2 diverged or failed, 1 could not run, 1 crashed, 1 resumed");
+  // The same count is the experiment's tally (run_experiment returns it).
+  const drape::ExperimentTally& t = progress.tally();
+  EXPECT_EQ(t.planned, 6);
+  EXPECT_EQ(t.ok, 1);
+  EXPECT_EQ(t.unstable, 2);
+  EXPECT_EQ(t.errors, 1);
+  EXPECT_EQ(t.crashed, 1);
+  EXPECT_EQ(t.skipped, 1);
 }
 
 TEST(ProgressReporter, TerminalRedrawsInPlaceOnRequest) {
