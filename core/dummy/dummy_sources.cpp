@@ -115,13 +115,20 @@ DummySections read_mesh_source(JsonReader& reader, const std::string& key,
   } catch (const InputError& e) {
     throw reader.error(key, e.what());
   }
+  // A flat mesh has no heights to slice between: said of the file, not of the y_top and
+  // y_bottom it would have given.
+  const HeightRange extent = vertical_extent(mesh);
+  if (!(extent.top > extent.bottom))
+    throw reader.error(key, InputError(path.string(), "",
+                                       "the mesh has no height: every vertex at y = " +
+                                           nlohmann::json(extent.top).dump() + " m after unit")
+                                .what());
   const HeightRange fallback = default_slice_range(mesh, res.sections);
   const double y_top = reader.number("y_top", fallback.top);
   const double y_bottom = reader.number("y_bottom", fallback.bottom);
   require_above(reader, y_top, y_bottom);
   // A plane at or beyond the mesh's extent cuts nothing or only a tip: name the field, not the
   // first empty slice.
-  const HeightRange extent = vertical_extent(mesh);
   if (!(y_top < extent.top))
     throw reader.error("y_top", "must be below the mesh's top (" +
                                     nlohmann::json(extent.top).dump() + " m after unit)");

@@ -88,12 +88,27 @@ SliceSegments cut_triangles(const TriangleMesh& mesh, double y) {
   return out;
 }
 
-// tinyobjloader reads a coordinate it cannot parse ("nan", "inf", "1e999") as 0 and an index
-// beyond int's range as a wrapped number, without a word, and drops faces of fewer than three
-// corners: every vertex and face line is checked here first, naming its line. Coordinates are
-// bounded as a scene's are (docs/scene.md, Limits), in metres once scaled by `unit`.
-void check_lines(const std::string& file, double unit) {
-  std::ifstream in(file);
+// The OBJ file's text without a UTF-8 byte order mark, which Windows editors put before text and
+// tinyobjloader does not skip: left in, it hid the first line's tag, so that line's vertex was
+// dropped and every face index after it pointed at the next vertex (docs/scene.md).
+std::string obj_text(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file, "", "cannot open file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::string out = std::move(text).str();
+  constexpr std::string_view bom = "\xEF\xBB\xBF";
+  if (std::string_view(out).substr(0, bom.size()) == bom) out.erase(0, bom.size());
+  return out;
+}
+
+// tinyobjloader reads a coordinate it cannot parse ("nan", "inf", "1e999") as 0, a missing one
+// as 0, and an index beyond int's range as a wrapped number, without a word, and drops faces of
+// fewer than three corners: every vertex and face line is checked here first, naming its line.
+// Coordinates are bounded as a scene's are (docs/scene.md, Limits), in metres once scaled by
+// `unit`.
+void check_lines(const std::string& file, const std::string& text, double unit) {
+  std::istringstream in(text);
   std::string line;
   long vertices = 0;
   for (long number = 1; std::getline(in, line); ++number) {
@@ -105,7 +120,8 @@ void check_lines(const std::string& file, double unit) {
     };
     if (tag == "v") {
       ++vertices;
-      for (int k = 0; k < 3 && fields >> token; ++k) {
+      int coordinates = 0;
+      for (; coordinates < 3 && fields >> token; ++coordinates) {
         double x = 0.0;
         const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), x);
         if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(x))
@@ -114,6 +130,8 @@ void check_lines(const std::string& file, double unit) {
           throw error(fmt::format("vertex coordinate {} x unit {:g} m is beyond +-{:g} m", token,
                                   unit, limits::max_coordinate));
       }
+      if (coordinates < 3)
+        throw error(fmt::format("a vertex of {} coordinates (x y z needed)", coordinates));
       continue;
     }
     int corners = 0;
@@ -136,16 +154,17 @@ void check_lines(const std::string& file, double unit) {
 TriangleMesh read_obj_mesh(const std::string& file, double unit) {
   // A directory or a device (/dev/zero) is said to be one (docs/scene.md, Limits).
   if (const auto reason = unreadable_file_reason(file)) throw InputError(file, "", *reason);
-  check_lines(file, unit);
+  const std::string text = obj_text(file);
+  check_lines(file, text, unit);
   tinyobj::ObjReaderConfig config;
   // Polygons are fanned from their first corner below rather than split along their shorter
   // diagonal by tinyobjloader: that is how the reference slicing of the built-in body split
   // its quads (0.1 mm agreement instead of 9 mm in the crotch notch, where rays graze).
   config.triangulate = false;
   config.vertex_color = false;
-  config.mtl_search_path = std::filesystem::path(file).parent_path().string();
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(file, config)) {
+  // Materials carry no geometry: none is read (an `mtllib` line finds an empty library).
+  if (!reader.ParseFromString(text, "", config)) {
     std::string why = reader.Error();
     while (!why.empty() && std::isspace(static_cast<unsigned char>(why.back()))) why.pop_back();
     throw InputError(file, "", "not a valid OBJ file: " + why);

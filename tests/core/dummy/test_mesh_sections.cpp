@@ -247,6 +247,9 @@ TEST_F(MeshSections, BadInputNamesTheSceneFieldAndTheMeshFile) {
   write("overflow.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999/1\n");
   write("most_negative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n");
   write("ahead.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n");
+  write("short_vertex.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n");
+  write("bare_vertex.obj", "v 0 0 0\nv\nv 0 1 0\nf 1 2 3\n");
+  write("flat.obj", "v 0 0.5 0\nv 1 0.5 0\nv 0 0.5 1\nf 1 2 3\n");
   // One vertical wall: every slice is a single segment enclosing nothing.
   write("wall.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
   // A U-shaped channel open towards +x: its area centroid lies in the hollow, and the ray from
@@ -279,6 +282,14 @@ TEST_F(MeshSections, BadInputNamesTheSceneFieldAndTheMeshFile) {
                      "most_negative.obj: line 4: face corner \"-9223372036854775808\" is not a vertex of the 3 before it");
   expect_input_error({{"mesh", "ahead.obj"}}, "dummy.mesh",
                      "ahead.obj: line 3: face corner \"3\" is not a vertex of the 2 before it");
+  // tinyobjloader reads a missing coordinate as 0.
+  expect_input_error({{"mesh", "short_vertex.obj"}}, "dummy.mesh",
+                     "short_vertex.obj: line 2: a vertex of 2 coordinates (x y z needed)");
+  expect_input_error({{"mesh", "bare_vertex.obj"}}, "dummy.mesh",
+                     "bare_vertex.obj: line 2: a vertex of 0 coordinates (x y z needed)");
+  // Said of the mesh, not of the y_top and y_bottom the user did not set.
+  expect_input_error({{"mesh", "flat.obj"}}, "dummy.mesh",
+                     "flat.obj: the mesh has no height: every vertex at y = 0.5 m after unit");
   expect_input_error({{"mesh", "two_corners.obj"}}, "dummy.mesh",
                      "two_corners.obj: line 4: a face of 2 corners (at least 3)");
   // 1e8 m, and 1e4 units of 1 km: beyond the scene's +-1e6 m.
@@ -301,6 +312,22 @@ TEST_F(MeshSections, BadInputNamesTheSceneFieldAndTheMeshFile) {
   upside_down["y_bottom"] = 0.6;
   expect_input_error(upside_down, "dummy.y_top", "must be above y_bottom");
   expect_input_error(with("builtin", "sphere"), "dummy.mesh", "conflicts with dummy.builtin");
+}
+
+// tinyobjloader does not skip a UTF-8 byte order mark: it hid the first vertex, and every face
+// then pointed at the next one (a bad-input audit of 2026-11-28).
+TEST_F(MeshSections, AByteOrderMarkChangesNothing) {
+  const std::string box = prism_obj(regular_polygon(6, 0.2, {0.0, 0.0}), 0.0,
+                                    regular_polygon(6, 0.2, {0.0, 0.0}), 1.0, true);
+  const std::string first_vertex_first = box.substr(box.find('\n') + 1);  // no comment line
+  write("plain.obj", first_vertex_first);
+  write("bom.obj", "\xEF\xBB\xBF" + first_vertex_first);
+  const DummySections plain = sections_of({{"mesh", "plain.obj"}});
+  const DummySections bom = sections_of({{"mesh", "bom.obj"}});
+  EXPECT_EQ(plain.y, bom.y);
+  EXPECT_EQ(plain.cx, bom.cx);
+  EXPECT_EQ(plain.cz, bom.cz);
+  EXPECT_EQ(plain.radius, bom.radius);
 }
 
 }  // namespace
