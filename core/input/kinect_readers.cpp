@@ -1,5 +1,7 @@
 #include "core/input/kinect_readers.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <optional>
 
@@ -99,6 +101,12 @@ Recording read_kinect_v2_csv(const std::string& file) {
       throw lines.error("timestamp",
                         "too far from the first frame's (the difference overflows 64 bits)");
     frame.t = static_cast<double>(ticks) / ticks_per_second;
+    // The bound every recording's times obey (docs/scene.md, Limits): `convert` wrote a time
+    // beyond it that reading the converted file then refused.
+    if (!(std::abs(frame.t) <= limits::max_recording_time))
+      throw lines.error("timestamp", fmt::format("{:.0f} s after the first frame's, beyond the "
+                                                 "+-{:g} s a recording's times may span",
+                                                 frame.t, limits::max_recording_time));
     if (!recording.frames.empty())
       detail::check_time_order(recording.frames.back().t, frame.t, file,
                                lines.where("timestamp"));

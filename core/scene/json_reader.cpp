@@ -66,6 +66,13 @@ std::optional<std::int64_t> exact_integer(const nlohmann::json& value) {
 
 namespace {
 
+// A number for a message: JSON's text where it has one, and inf, -inf or nan where JSON prints
+// null (a fabric's stiffness derived from a spacing of 1e-160 read "got null").
+std::string number_text(double value) {
+  if (std::isfinite(value)) return nlohmann::json(value).dump();
+  return std::isnan(value) ? "nan" : value > 0.0 ? "inf" : "-inf";
+}
+
 bool integral_number(const nlohmann::json& value) {
   if (value.is_number_integer()) return true;
   if (!value.is_number_float()) return false;
@@ -145,21 +152,19 @@ Vec3 JsonReader::vec3(const std::string& key, const Vec3& fallback) {
 }
 
 double JsonReader::positive(const std::string& key, double value) const {
-  if (!(value > 0.0)) throw error(key, "must be positive, got " + nlohmann::json(value).dump());
+  if (!(value > 0.0)) throw error(key, "must be positive, got " + number_text(value));
   return value;
 }
 
 double JsonReader::at_most(const std::string& key, double value, double limit) const {
   if (!(value <= limit))
-    throw error(key, "must be at most " + nlohmann::json(limit).dump() + ", got " +
-                         nlohmann::json(value).dump());
+    throw error(key, "must be at most " + number_text(limit) + ", got " + number_text(value));
   return value;
 }
 
 double JsonReader::at_least(const std::string& key, double value, double limit) const {
   if (!(value >= limit))
-    throw error(key, "must be at least " + nlohmann::json(limit).dump() + ", got " +
-                         nlohmann::json(value).dump());
+    throw error(key, "must be at least " + number_text(limit) + ", got " + number_text(value));
   return value;
 }
 
@@ -176,7 +181,7 @@ Vec3 JsonReader::within(const std::string& key, const Vec3& value, double limit)
 
 double JsonReader::non_negative(const std::string& key, double value) const {
   if (!(value >= 0.0))
-    throw error(key, "must not be negative, got " + nlohmann::json(value).dump());
+    throw error(key, "must not be negative, got " + number_text(value));
   return value;
 }
 

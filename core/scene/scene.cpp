@@ -56,9 +56,15 @@ ClothParams read_cloth(JsonReader in) {
     throw in.error("cols", "rows x cols = " + std::to_string(particles) +
                                " particles, more than the limit " +
                                std::to_string(limits::max_cloth_particles));
-  c.spacing =
-      in.at_most("spacing", in.positive("spacing", in.number("spacing")), limits::max_length);
+  c.spacing = in.at_least(
+      "spacing", in.at_most("spacing", in.number("spacing"), limits::max_length),
+      limits::min_spacing);
   c.origin = in.within("origin", in.vec3("origin"), limits::max_coordinate);
+  const double resolved = limits::min_spacing_of_origin * c.origin.cwiseAbs().maxCoeff();
+  if (!(c.spacing >= resolved))
+    throw in.error("spacing", fmt::format("must be at least 2^-30 of cloth.origin's largest "
+                                          "coordinate ({:g} m) there, got {:g}",
+                                          resolved, c.spacing));
   c.col_dir = unit_direction(in, "col_dir", c.col_dir);
   c.row_dir = unit_direction(in, "row_dir", c.row_dir);
   if (std::abs(c.col_dir.dot(c.row_dir)) > direction_tolerance)
@@ -77,10 +83,12 @@ ClothParams read_cloth(JsonReader in) {
     }
   };
   c.particle_mass = derived("particle_mass", [&] {
-    return in.at_most("particle_mass",
-                      in.positive("particle_mass", preset ? in.number("particle_mass", d.particle_mass)
-                                                          : in.number("particle_mass")),
-                      limits::max_mass);
+    return in.at_least("particle_mass",
+                       in.at_most("particle_mass",
+                                  preset ? in.number("particle_mass", d.particle_mass)
+                                         : in.number("particle_mass"),
+                                  limits::max_mass),
+                       limits::min_mass);
   });
   c.k_structural = derived("k_structural", [&] {
     return stiffness(in, "k_structural",

@@ -12,6 +12,12 @@ namespace drape::limits {
 constexpr std::int64_t max_cloth_particles = 4'000'000;
 /// Lengths: cloth spacing, collision threshold, hold threshold, dummy radius [m].
 constexpr double max_length = 1e3;
+/// cloth.spacing [m]: at least a micrometre, and at least 2^-30 of the cloth origin's largest
+/// coordinate, so that neighbouring particles' coordinates differ in many more than their last
+/// digits (at 1e-17 m every particle started at one point, and the stability estimate's
+/// eigensolver failed).
+constexpr double min_spacing = 1e-6;
+constexpr double min_spacing_of_origin = 0x1p-30;
 /// Coordinates of positions given in a scene (cloth origin, map_top, dummy heights) [m].
 constexpr double max_coordinate = 1e6;
 /// Hand positions as a recording holds them, in the sensor frame [sensor units]: the transform
@@ -26,8 +32,10 @@ constexpr double max_recording_time = 1e10;
 constexpr double max_time_scale = 1e3;
 /// Spring and collision stiffness [N/m] and damping coefficients [N s/m].
 constexpr double max_stiffness = 1e12;
-/// Particle mass [kg].
+/// Particle mass [kg]: at most 10^6 and at least a picogram, so that k / m and c / m stay below
+/// 10^24 /s^2 and /s (a mass of 1e-300 with k = 1e12 gave an infinite frequency).
 constexpr double max_mass = 1e6;
+constexpr double min_mass = 1e-12;
 /// Length of the gravity vector [m/s^2].
 constexpr double max_gravity = 1e3;
 /// Simulated time [s].

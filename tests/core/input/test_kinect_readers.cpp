@@ -187,6 +187,22 @@ TEST(KinectV2Csv, TimestampsWhoseDifferenceOverflowsAreInputErrors) {
   }
 }
 
+// A bad-input audit of 2026-11-28: `convert` wrote 1e11 s, which reading its output refused.
+TEST(KinectV2Csv, TimesBeyondARecordingsSpanAreInputErrors) {
+  const std::string file =
+      write_file(test_dir(), "span.csv",
+                 csv_line("0", {}) + csv_line("100000000000000000", {}) +  // 1e10 s: the bound
+                     csv_line("100000000100000000", {}));
+  try {
+    read_kinect_v2_csv(file);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              file + ": line 3: timestamp: 10000000010 s after the first frame's, beyond the "
+                     "+-1e+10 s a recording's times may span");
+  }
+}
+
 TEST(NtuSkeleton, SyntheticFileFollowsTheFirstPerson) {
   const auto dir = test_dir();
   const Recording r = read_ntu_skeleton(write_file(dir, "synthetic.skeleton", ntu_text()));

@@ -4,8 +4,10 @@
 #include "core/scene/json_reader.hpp"
 #include "tests/support/test_support.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 namespace drape {
 namespace {
@@ -80,6 +82,14 @@ TEST(JsonReader, BoundsNameTheField) {
             "f.json: cloth.k: must be at most 1000000000000.0, got 1e+308");
   EXPECT_EQ(input_error_message([&] { in.within("o", in.vec3("o"), 1e6); }),
             "f.json: cloth.o: must be within +-1000000.0");
+  // JSON prints an infinity as null: a derived value that overflowed read "got null".
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(input_error_message([&] { in.at_most("k", inf, 1e12); }),
+            "f.json: cloth.k: must be at most 1000000000000.0, got inf");
+  EXPECT_EQ(input_error_message([&] { in.positive("k", -inf); }),
+            "f.json: cloth.k: must be positive, got -inf");
+  EXPECT_EQ(input_error_message([&] { in.at_least("k", std::nan(""), 1.0); }),
+            "f.json: cloth.k: must be at least 1.0, got nan");
 }
 
 TEST(JsonReader, LongWrongTypedValuesAreShortenedInMessages) {

@@ -87,9 +87,10 @@ TEST(Scene, WrongTypes) {
 }
 
 TEST(Scene, OutOfRangeValues) {
-  EXPECT_EQ(error_for(with("cloth.spacing=0")), "scene.json: cloth.spacing: must be positive, got 0.0");
+  EXPECT_EQ(error_for(with("cloth.spacing=0")),
+            "scene.json: cloth.spacing: must be at least 1e-06, got 0.0");
   EXPECT_EQ(error_for(with("cloth.particle_mass=-1")),
-            "scene.json: cloth.particle_mass: must be positive, got -1.0");
+            "scene.json: cloth.particle_mass: must be at least 1e-12, got -1.0");
   EXPECT_EQ(error_for(with("cloth.rows=0")),
             "scene.json: cloth.rows: must be an integer from 1 to 4000000, got 0");
   EXPECT_EQ(error_for(with("cloth.k_shear=-2")),
@@ -115,6 +116,20 @@ TEST(SceneLimits, ClothSizeIsCountedIn64BitsAndBounded) {
   EXPECT_EQ(error_for(with("cloth.rows=4294967297")),
             "scene.json: cloth.rows: must be an integer from 1 to 4000000, got 4294967297");
   EXPECT_EQ(error_for(with("cloth.rows=2.5")), "scene.json: cloth.rows: expected an integer, got 2.5");
+}
+
+// A bad-input audit of 2026-11-28: at a spacing of 1e-17 m every particle started at one point
+// and the run ended `ok`; a mass of 1e-300 with k = 1e12 gave an infinite frequency.
+TEST(SceneLimits, SpacingAndMassTooSmallForTheModelAreRefused) {
+  EXPECT_EQ(error_for(with("cloth.spacing=1e-17")),
+            "scene.json: cloth.spacing: must be at least 1e-06, got 1e-17");
+  EXPECT_EQ(error_for(with("cloth.spacing=1e-4", "cloth.origin=[0, 1e6, 0]")),
+            "scene.json: cloth.spacing: must be at least 2^-30 of cloth.origin's largest "
+            "coordinate (0.000931323 m) there, got 0.0001");
+  EXPECT_EQ(error_for(with("cloth.particle_mass=1e-300")),
+            "scene.json: cloth.particle_mass: must be at least 1e-12, got 1e-300");
+  // The limits themselves are accepted.
+  EXPECT_EQ(error_for(with("cloth.spacing=1e-6", "cloth.particle_mass=1e-12")), "no error");
 }
 
 TEST(SceneLimits, PinsAreComparedBeforeNarrowing) {
@@ -260,11 +275,12 @@ TEST(Scene, AFabricValueOutOfRangeNamesTheSpacingItCameFrom) {
   scene["cloth"].erase("particle_mass");
   scene["cloth"].erase("k_structural");
   scene["cloth"]["fabric"] = "gray-interlock";
-  scene["cloth"]["spacing"] = 1e-300;  // rho_A h^2 underflows to 0
-  EXPECT_EQ(error_for(scene), "scene.json: cloth.spacing: gives the fabric's particle_mass, which "
-                              "must be positive, got 0.0");
+  scene["cloth"]["spacing"] = 1e-6;  // rho_A h^2 is below a picogram
+  const std::string message = error_for(scene);
+  EXPECT_EQ(message.rfind("scene.json: cloth.spacing: gives the fabric's particle_mass, which "
+                          "must be at least 1e-12, got ", 0), 0u) << message;
   scene["cloth"]["particle_mass"] = 0.0;  // given in the scene: its own error
-  EXPECT_EQ(error_for(scene), "scene.json: cloth.particle_mass: must be positive, got 0.0");
+  EXPECT_EQ(error_for(scene), "scene.json: cloth.particle_mass: must be at least 1e-12, got 0.0");
 }
 
 TEST(Scene, UnknownFabricIsNamed) {
