@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -27,7 +28,31 @@ std::string joined(const std::vector<std::string>& names) {
   return out;
 }
 
+// The first entry below `path` that removing it would fail on: an entry of a folder that is not
+// writable, or a folder that cannot be listed. Nothing for a file or a link (its own folder
+// decides) and for a tree that can go.
+std::optional<fs::path> removal_blocker(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(path, ec))) return std::nullopt;
+  fs::recursive_directory_iterator entry(path, ec);
+  if (ec) return path;
+  for (; entry != fs::recursive_directory_iterator(); entry.increment(ec)) {
+    if (ec) return path;
+    if (!writable_folder(entry->path().parent_path())) return entry->path();
+  }
+  if (ec) return path;
+  return std::nullopt;
+}
+
 }  // namespace
+
+void check_removable(const fs::path& dir, const std::vector<std::string>& names) {
+  for (const auto& name : names)
+    if (const auto blocker = removal_blocker(dir / name))
+      throw folder_error(dir, "cannot replace its files: " + blocker->string() +
+                                  " cannot be removed (its folder is not writable or cannot be "
+                                  "read); nothing was removed");
+}
 
 const std::vector<std::string>& run_file_names() {
   // summary.json first: clearing removes the mark of a complete folder before anything else.
@@ -57,6 +82,7 @@ void check_run_folder(const fs::path& dir, bool overwrite) {
     if (!present.empty() && !overwrite)
       throw folder_error(dir, "holds another run's files (" + joined(present) +
                                   "); pass --overwrite to replace them, or choose another folder");
+    check_removable(dir, present);
     return;
   }
   // The nearest existing ancestor must be a folder we may create entries in.

@@ -14,8 +14,12 @@ const std::vector<std::string>& run_file_names();
 std::vector<std::string> run_files_in(const std::filesystem::path& dir);
 /// Throws InputError naming `dir` and --out when it cannot take a run: it is an existing file,
 /// its nearest existing parent is not a writable folder, or it holds another run's files and
-/// `overwrite` is false. Changes nothing.
+/// `overwrite` is false or they cannot all be removed. Changes nothing.
 void check_run_folder(const std::filesystem::path& dir, bool overwrite);
+/// Throws InputError naming `dir`, --out and the entry when one of the entries `names` of `dir`
+/// (files or whole folders) cannot be removed, so that --overwrite removes all or nothing (a
+/// folder it could not empty used to be found after the earlier files were gone).
+void check_removable(const std::filesystem::path& dir, const std::vector<std::string>& names);
 /// For a single run's --out (`run`, `live`): an experiment's folder (its experiment.json) is
 /// refused, even with --overwrite: the run's files beside it would make the experiment refuse
 /// to resume. (An experiment checks its own folder with check_run_folder.)

@@ -49,7 +49,10 @@ void check_experiment_folder(const fs::path& dir, const std::string& name, bool 
   check_run_folder(dir, overwrite);  // a file, an uncreatable folder, a run's files
   const fs::path header = dir / "experiment.json";
   std::error_code ec;
-  if (overwrite) return;  // clear_experiment_folder removes what is in the way
+  if (overwrite) {  // clear_experiment_folder removes what is in the way, if it all can go
+    check_removable(dir, experiment_file_names());
+    return;
+  }
   for (const char* folder : {"runs", "shards"}) {
     const fs::path path = dir / folder;
     if (fs::exists(fs::symlink_status(path, ec)) && !fs::is_directory(path, ec))

@@ -76,6 +76,25 @@ TEST(RunFolder, AFileOrAnUnwritablePlaceIsRefused) {
   EXPECT_EQ(check("", true), "--out: is empty: name the output folder");
 }
 
+// --overwrite removes all or nothing: a frames/ folder it could not empty used to be found after
+// summary.json and the CSV files were gone (a bad-input audit of 2026-11-28).
+TEST(RunFolder, OverwriteThatCannotRemoveEverythingIsRefusedFirst) {
+  if (::geteuid() == 0) GTEST_SKIP() << "root removes anything (checked as nobody by hand)";
+  const fs::path dir = fresh("locked_frames");
+  fs::create_directories(dir / "frames");
+  std::ofstream(dir / "summary.json") << "{}";
+  std::ofstream(dir / "frames" / "frame_00001.vtk") << "old";
+  fs::permissions(dir / "frames", fs::perms::owner_read | fs::perms::owner_exec);
+  EXPECT_EQ(check(dir, true),
+            dir.string() + ": --out: cannot replace its files: " +
+                (dir / "frames" / "frame_00001.vtk").string() +
+                " cannot be removed (its folder is not writable or cannot be read); nothing was "
+                "removed");
+  fs::permissions(dir / "frames", fs::perms::owner_all);
+  EXPECT_EQ(check(dir, true), "no error");
+  EXPECT_TRUE(fs::exists(dir / "summary.json")) << "checking removes nothing";
+}
+
 TEST(RunFolder, ClearingRemovesOnlyRunFiles) {
   const fs::path dir = fresh("clear");
   fs::create_directories(dir / "frames");
