@@ -242,9 +242,9 @@ double parse_finite(std::string_view token, const TextLines& lines, const std::s
   double value = 0.0;
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
   if (token.empty() || ec != std::errc() || end != token.data() + token.size())
-    throw lines.error(what, "expected a number, got \"" + std::string(token) + "\"");
+    throw lines.error(what, "expected a number, got " + quote_text(token));
   if (!std::isfinite(value))
-    throw lines.error(what, "must be finite, got \"" + std::string(token) + "\"");
+    throw lines.error(what, "must be finite, got " + quote_text(token));
   return value;
 }
 
@@ -252,7 +252,7 @@ long long parse_integer(std::string_view token, const TextLines& lines, const st
   long long value = 0;
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
   if (token.empty() || ec != std::errc() || end != token.data() + token.size())
-    throw lines.error(what, "expected an integer, got \"" + std::string(token) + "\"");
+    throw lines.error(what, "expected an integer, got " + quote_text(token));
   return value;
 }
 

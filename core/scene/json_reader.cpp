@@ -191,6 +191,8 @@ void JsonReader::finish() const {
 }
 
 std::optional<std::string> unreadable_file_reason(const std::string& file) {
+  // `drapelab run ""` said "no such file", as if a file of no name had been looked for.
+  if (file.empty()) return "the path is empty: name a file";
   std::error_code ec;
   const auto status = std::filesystem::status(file, ec);
   // A symbolic link loop or a path through a file: the system's own words.

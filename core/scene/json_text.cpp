@@ -152,6 +152,13 @@ std::string quote_json(const nlohmann::json& value) {
   return shorten(out, max_quoted_chars);
 }
 
+std::string quote_text(std::string_view text) {
+  if (text.size() <= max_quoted_chars) return "\"" + std::string(text) + "\"";
+  std::size_t cut = max_quoted_chars - 3;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+  return "\"" + std::string(text.substr(0, cut)) + "...\"";
+}
+
 bool is_utf8(const std::string& text) {
   try {
     static_cast<void>(nlohmann::json(text).dump());

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "core/scene/input_error.hpp"
 
@@ -31,6 +32,10 @@ nlohmann::json parse_json_stream(std::istream& in, const std::string& file);
 /// `value` printed for a message: nesting below a few levels as "...", at most
 /// max_quoted_chars characters.
 std::string quote_json(const nlohmann::json& value);
+/// Raw text (a field of a CSV line, a token) in double quotes for a message, cut after
+/// max_quoted_chars characters with "..." (at a UTF-8 character's start): a line without
+/// separators is one field, and quoting it whole made a megabyte message.
+std::string quote_text(std::string_view text);
 /// Whether `text` is valid UTF-8, as a JSON string must be: a file's strings are (the parser
 /// checks them), but a command line's bytes or a path need not be.
 bool is_utf8(const std::string& text);

@@ -51,6 +51,8 @@ TEST(JsonReader, ErrorsNameFileAndFullPath) {
 TEST(JsonReader, MissingAndBrokenFilesNameTheFile) {
   EXPECT_EQ(input_error_message([] { read_json_file("/nonexistent/scene.json"); }),
             "/nonexistent/scene.json: no such file");
+  EXPECT_EQ(input_error_message([] { read_json_file(""); }),
+            "<input>: the path is empty: name a file");
   const std::string broken = ::testing::TempDir() + "broken.json";
   std::ofstream(broken) << "{\"cloth\": [1, 2";
   EXPECT_NE(input_error_message([&] { read_json_file(broken); }).find(broken + ": not valid JSON"),

@@ -84,5 +84,20 @@ TEST(JsonText, QuotedValuesAreShortAndShallow) {
   EXPECT_EQ(quoted.substr(quoted.size() - 3), "...");
 }
 
+// A recording's line without separators is one field: quoted whole, a 60 MB line made the
+// message as long (a bad-input audit of 2026-11-28).
+TEST(JsonText, QuotedTextIsCutAtACharacter) {
+  EXPECT_EQ(quote_text("nan"), "\"nan\"");
+  const std::string line(1000, 'x');
+  EXPECT_EQ(quote_text(line), "\"" + std::string(max_quoted_chars - 3, 'x') + "...\"");
+  // Two-byte characters: the cut falls on a character's first byte, never inside one.
+  std::string accents;
+  for (int i = 0; i < 300; ++i) accents += "\xC3\xA9";  // U+00E9
+  const std::string quoted = quote_text(accents);
+  EXPECT_LE(quoted.size(), max_quoted_chars + 2);
+  EXPECT_TRUE(is_utf8(quoted)) << quoted;
+  EXPECT_EQ(quoted.substr(quoted.size() - 4), "...\"");
+}
+
 }  // namespace
 }  // namespace drape
