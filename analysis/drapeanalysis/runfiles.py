@@ -335,23 +335,58 @@ def run_dir(directory, row):
     return Path(directory) / row["run_dir"]
 
 
-def missing_run_files(directory, row):
-    """The files a run of the results table must have and has not: result.json, then
-    summary.json and energy.csv (a bisection: bisect.json); none for a run that could not run
-    or crashed, which has no files to report on. One that is there but is not a regular file
-    (a folder, a named pipe) is a ValueError naming it: it is not missing, it is wrong."""
-    if row.get("status") in ("error", "crashed"):
-        return []
-    run = run_dir(directory, row)
-    names = ("bisect.json",) if row.get("bisect_parameter") else ("summary.json", "energy.csv")
+def optional_run_files(run, summary):
+    """The files a finished run writes only under some settings that its summary.json says it
+    wrote (docs/outputs.md): state.csv when it ended ok, dummy.csv with object particles,
+    hands.csv with `input`, trace.csv and event_trace/ with their intervals, restart_error.csv
+    with `restart_error`. Without one a report or a page would drop what it shows silently."""
+    path = Path(run) / "summary.json"
+
+    def positive(value, field):
+        return finite_number(value, path, field) > 0
+
+    names = ["state.csv"] if summary.get("status") == "ok" else []
+    if positive(summary.get("object_particles", 0), "object_particles"):
+        names.append("dummy.csv")
+    if scene_value(summary, "input", None) is not None:
+        names.append("hands.csv")
+    if positive(scene_value(summary, "output.trace_interval", 0), "scene.output.trace_interval"):
+        names.append("trace.csv")
+    if positive(scene_value(summary, "output.event_trace_interval", 0),
+                "scene.output.event_trace_interval"):
+        names += [f"event_trace/{name}.npy" for name in EVENT_TRACE_TYPES]
+    if "restart_error" in summary:
+        names.append("restart_error.csv")
+    return names
+
+
+def missing_files(paths):
+    """The `paths` not there; a ValueError naming one there that is not a regular file (a folder,
+    a named pipe): it is not missing, it is wrong."""
     missing = []
-    for path in (run / name for name in ("result.json",) + names):
+    for path in paths:
         problem = input_problem(path)
         if problem == "no such file":
             missing.append(path)
         elif problem:
             raise ValueError(f"{path}: {problem}")
     return missing
+
+
+def missing_run_files(directory, row):
+    """The files a run of the results table must have and has not: result.json, then
+    summary.json, energy.csv and the files the summary says the run wrote (optional_run_files; a
+    bisection: bisect.json); none for a run that could not run or crashed, which has no files to
+    report on. A file there that is not a regular file is a ValueError naming it."""
+    if row.get("status") in ("error", "crashed"):
+        return []
+    run = run_dir(directory, row)
+    bisection = bool(row.get("bisect_parameter"))
+    names = ("bisect.json",) if bisection else ("summary.json", "energy.csv")
+    missing = missing_files([run / name for name in ("result.json",) + names])
+    if bisection or run / "summary.json" in missing:
+        return missing
+    return missing + missing_files([run / n for n in optional_run_files(run, read_summary(run))])
 
 
 def scene_value(summary, path, default):

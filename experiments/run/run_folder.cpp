@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -42,6 +44,20 @@ std::optional<fs::path> removal_blocker(const fs::path& path) {
   }
   if (ec) return path;
   return std::nullopt;
+}
+
+// The number at `pointer` ("/scene/output/trace_interval") of a run's summary, 0 when absent.
+double summary_number(const nlohmann::json& summary, const std::string& file,
+                      const std::string& pointer) {
+  const nlohmann::json::json_pointer at(pointer);
+  if (!summary.contains(at)) return 0.0;
+  const nlohmann::json& value = summary[at];
+  if (!value.is_number() || !std::isfinite(value.get<double>())) {
+    std::string field = pointer.substr(1);
+    std::replace(field.begin(), field.end(), '/', '.');
+    throw InputError(file, field, "expected a finite number, got " + shorten(value.dump()));
+  }
+  return value.get<double>();
 }
 
 }  // namespace
@@ -107,6 +123,21 @@ void check_run_folder_not_experiment(const fs::path& dir) {
   std::error_code ec;
   if (fs::exists(fs::symlink_status(dir / "experiment.json", ec)))
     throw folder_error(dir, "holds an experiment (experiment.json): choose another folder");
+}
+
+std::vector<std::string> written_run_files(const nlohmann::json& summary, const std::string& file) {
+  std::vector<std::string> names = {"energy.csv"};
+  if (summary.contains("status") && summary["status"] == "ok") names.push_back("state.csv");
+  if (summary_number(summary, file, "/object_particles") > 0.0) names.push_back("dummy.csv");
+  const nlohmann::json::json_pointer input("/scene/input");
+  if (summary.contains(input) && !summary[input].is_null()) names.push_back("hands.csv");
+  if (summary_number(summary, file, "/scene/output/trace_interval") > 0.0)
+    names.push_back("trace.csv");
+  if (summary_number(summary, file, "/scene/output/event_trace_interval") > 0.0)
+    for (const char* array : {"t", "x", "v", "fixed", "contact"})
+      names.push_back(std::string("event_trace/") + array + ".npy");
+  if (summary.contains("restart_error")) names.push_back("restart_error.csv");
+  return names;
 }
 
 void clear_run_folder(const fs::path& dir) {

@@ -4,6 +4,8 @@
 // a run, so that a folder never mixes two runs' files and is complete only once summary.json
 // exists.
 #include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 namespace drape {
@@ -24,6 +26,11 @@ void check_removable(const std::filesystem::path& dir, const std::vector<std::st
 /// refused, even with --overwrite: the run's files beside it would make the experiment refuse
 /// to resume. (An experiment checks its own folder with check_run_folder.)
 void check_run_folder_not_experiment(const std::filesystem::path& dir);
+/// The files beside summary.json that a finished run wrote, as its `summary` (from `file`) says
+/// (docs/outputs.md): energy.csv; state.csv when it ended ok; dummy.csv with object particles;
+/// hands.csv with `input`; trace.csv and event_trace/*.npy with their intervals;
+/// restart_error.csv with `restart_error`. An InputError names a field of the wrong type.
+std::vector<std::string> written_run_files(const nlohmann::json& summary, const std::string& file);
 /// Creates `dir` and removes every run file in it (nothing else), summary.json first.
 void clear_run_folder(const std::filesystem::path& dir);
 

@@ -76,6 +76,20 @@ std::string header_difference(const nlohmann::json& source, const nlohmann::json
   return "";
 }
 
+// Throws InputError naming the first entry of the run folder `dir` that is neither a file nor a
+// folder: a named pipe (or a device, a socket) cannot be copied, and reading one would wait for
+// a writer for ever.
+void check_copyable(const fs::path& dir) {
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::file_status status = it->status(ec);
+    if (!ec && !fs::is_regular_file(status) && !fs::is_directory(status))
+      throw InputError(it->path().string(), "",
+                       "not a regular file (merge copies the run's files)");
+  }
+  if (ec) throw InputError(dir.string(), "", "cannot be read: " + ec.message());
+}
+
 }  // namespace
 
 std::vector<std::string> merge_results(const fs::path& out_dir, const std::vector<fs::path>& sources) {
@@ -100,8 +114,10 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
     for (std::size_t k = 0; k < ids.size(); ++k) {
       const std::string& id = ids[k];
       const fs::path from = source / "runs" / id, to = out_dir / "runs" / id;
-      if (!finished_run(from, header["plan"][k]).row || finished_run(to, header["plan"][k]).row)
-        continue;
+      const StoredResult found = finished_run(from, header["plan"][k]);
+      if (!found.row || finished_run(to, header["plan"][k]).row) continue;
+      check_run_files(from, *found.row);  // a damaged run is named, not copied
+      check_copyable(from);
       fs::remove_all(to);
       fs::create_directories(to.parent_path());
       try {
@@ -123,6 +139,7 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
       missing.push_back(problem.empty() ? ids[k] : ids[k] + ": " + problem);
       continue;
     }
+    check_run_files(out_dir / "runs" / ids[k], *row);
     (*row)["index"] = static_cast<int>(k);
     (*row)["reference"] = header["plan"][k]["reference"];
     rows.push_back(std::move(*row));

@@ -2,7 +2,9 @@
 
 #include <fstream>
 
+#include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
+#include "experiments/run/run_folder.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/sweep/results_table.hpp"
 
@@ -23,6 +25,15 @@ StoredResult read_result(const fs::path& dir, const std::string& id) {
   const std::string problem = row.is_discarded() ? "is not valid JSON" : result_row_problem(row, id);
   if (!problem.empty()) return {std::nullopt, file.string() + ": " + problem};
   return {std::move(row), ""};
+}
+
+// Why the CSV file at `path` is cut, or "": every line a run writes ends in a newline, so a file
+// that does not was cut (a full disk, a killed copy) inside its last line.
+std::string cut_reason(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (in.tellg() <= 0) return "empty file (a run writes its header line first)";
+  in.seekg(-1, std::ios::end);
+  return in.get() == '\n' ? "" : "the last line is cut (the file does not end in a newline)";
 }
 
 }  // namespace
@@ -57,6 +68,33 @@ StoredResult finished_run(const fs::path& dir, const nlohmann::json& planned) {
   StoredResult result = read_result(dir, planned["id"].get<std::string>());
   if (result.row && !spec) return {std::nullopt, file.string() + ": missing or unreadable"};
   return result;
+}
+
+// Merge takes a run by its result.json, written last; a file of the run damaged or lost since
+// (a copy cut short, a cleanup) would be listed as finished and dropped by the report silently.
+void check_run_files(const fs::path& dir, const nlohmann::json& row) {
+  const std::string status = row.value("status", "");
+  if (status == "error" || status == "crashed") return;
+  const auto require = [&](const fs::path& path, const char* why) {
+    if (const auto reason = unreadable_file_reason(path.string()))
+      throw InputError(path.string(), "", *reason + why);
+  };
+  const char* finished = " (its run finished: result.json)";
+  if (row.contains("bisect_parameter")) {
+    require(dir / experiment_run_file::bisection, finished);
+    read_json_file((dir / experiment_run_file::bisection).string());
+    return;
+  }
+  const std::string summary_file = (dir / "summary.json").string();
+  require(summary_file, finished);
+  const nlohmann::json summary = read_json_file(summary_file);
+  if (!summary.is_object()) throw InputError(summary_file, "", "expected a JSON object");
+  for (const std::string& name : written_run_files(summary, summary_file)) {
+    const fs::path path = dir / name;
+    require(path, " (the run wrote it: summary.json)");
+    const std::string cut = path.extension() == ".csv" ? cut_reason(path) : "";
+    if (!cut.empty()) throw InputError(path.string(), "", cut);
+  }
 }
 
 }  // namespace drape

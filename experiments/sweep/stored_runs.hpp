@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace drape {
 
@@ -25,5 +26,10 @@ std::optional<nlohmann::json> read_json_if_present(const std::filesystem::path& 
 /// The result of the plan's run `planned` in folder `dir`: none, with why, when its run.json is
 /// not the run's identity (edited, or copied from another run) or its result.json is no row of it.
 StoredResult finished_run(const std::filesystem::path& dir, const nlohmann::json& planned);
+/// Throws InputError naming the file when the run in `dir`, finished with result row `row`,
+/// lacks a file it wrote (summary.json, those of written_run_files; a bisection's bisect.json),
+/// or one is cut (JSON that does not parse, a CSV file whose last line has no newline) or is no
+/// regular file. A run that could not run or crashed wrote none.
+void check_run_files(const std::filesystem::path& dir, const nlohmann::json& row);
 
 }  // namespace drape

@@ -44,6 +44,14 @@ CsvTable::CsvTable(const std::filesystem::path& file, const std::vector<std::str
   if (!in) throw InputError(m_file, "", "cannot read the file");
   std::string line;
   if (!std::getline(in, line)) throw InputError(m_file, "", "empty file, no header line");
+  // Every line a run writes ends in a newline: a line at the end without one was cut (a full
+  // disk, `head -c`), and its last number may be cut short yet still parse.
+  const auto check_not_cut = [&](int number) {
+    if (in.eof())
+      throw InputError(m_file, "line " + std::to_string(number),
+                       "the last line is cut (the file does not end in a newline)");
+  };
+  check_not_cut(1);
   if (!line.empty() && line.back() == '\r') line.pop_back();
   const std::vector<std::string_view> header = split_fields(line);
   const auto column_index = [&](const std::string& name) {
@@ -59,6 +67,7 @@ CsvTable::CsvTable(const std::filesystem::path& file, const std::vector<std::str
   int line_number = 1;
   while (std::getline(in, line)) {
     ++line_number;
+    check_not_cut(line_number);
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
     const std::vector<std::string_view> fields = split_fields(line);

@@ -1,8 +1,9 @@
 #pragma once
 // A numeric CSV file with a header line, as a run writes them (docs/outputs.md), read strictly:
-// a missing column, a short row or a field that is not a number is an InputError naming the
-// file and the line. A number read is any double, inf and nan too; finite() and integer() are
-// the checked reads for the columns where those are damage.
+// a missing column, a short row, a field that is not a number or a last line without its
+// newline (a cut file) is an InputError naming the file and the line. A number read is any
+// double, inf and nan too; finite() and integer() are the checked reads for the columns where
+// those are damage.
 #include <filesystem>
 #include <string>
 #include <vector>

@@ -8,6 +8,7 @@
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
+#include "experiments/run/run_folder.hpp"
 #include "experiments/viewer/csv_table.hpp"
 
 namespace drape {
@@ -95,6 +96,32 @@ ViewerFrame read_state(const fs::path& file, int particles, double t) {
   return frame;
 }
 
+bool finite_number(const nlohmann::json& j) { return j.is_number() && std::isfinite(j.get<double>()); }
+
+// energy.csv and hands.csv get rows at the first step end after each output.energy_interval and
+// at the end: a file cut at a line's end (a full disk, `head`) ends more than an interval and a
+// step (a run that stopped writes no row of its last step) before the summary's sim_time. A
+// summary without sim_time (of another kind) is not checked.
+void check_rows_reach_end(const CsvTable& table, const std::vector<double>& times,
+                          const nlohmann::json& summary) {
+  const auto number = [&](const char* pointer, double fallback) {
+    const nlohmann::json::json_pointer at(pointer);
+    return summary.contains(at) && finite_number(summary[at]) ? summary[at].get<double>()
+                                                              : fallback;
+  };
+  const double end = number("/sim_time", std::nan(""));
+  if (std::isnan(end)) return;
+  const double interval = number("/scene/output/energy_interval", 0.01);
+  const double slack = interval + number("/step_max", 0.0) + 1e-9 * std::max(1.0, std::abs(end));
+  if (times.empty() || times.back() < end - slack)
+    throw InputError(table.file(), "",
+                     (times.empty() ? std::string("no rows")
+                                    : fmt::format("the rows end at t = {} s", times.back())) +
+                         fmt::format(", before the run's sim_time = {} s in summary.json (more "
+                                     "than output.energy_interval = {} s and a step): the file "
+                                     "is cut", end, interval));
+}
+
 void read_dummy(const fs::path& file, ViewerRun& run) {
   const CsvTable table(file, {"section", "point", "x", "y", "z"});
   // Sections and points count from 0, and their product is the row count: neither exceeds it.
@@ -108,6 +135,12 @@ void read_dummy(const fs::path& file, ViewerRun& run) {
     throw InputError(
         table.file(), "",
         "sections x points is not the number of rows (" + std::to_string(table.rows()) + ")");
+  // A file cut at a section's end still has whole sections: the summary counts them all.
+  const nlohmann::json& count = run.summary.value("object_particles", nlohmann::json());
+  if (count.is_number() && count != table.rows())
+    throw InputError(table.file(), "",
+                     fmt::format("{} rows, but summary.json has object_particles {}: the file is "
+                                 "cut", table.rows(), count.dump()));
 }
 
 void read_hands(const fs::path& file, ViewerRun& run, int particles) {
@@ -133,6 +166,9 @@ void read_hands(const fs::path& file, ViewerRun& run, int particles) {
     hand->candidate.push_back(table.integer(r, 5, -1, particles - 1));
     hand->held.push_back(table.integer(r, 6, -1, particles - 1));
   }
+  // A run writes rows of both hands from its start: a header alone is a file cut too.
+  if (run.hands.empty()) check_rows_reach_end(table, {}, run.summary);
+  for (const ViewerHand& hand : run.hands) check_rows_reach_end(table, hand.t, run.summary);
 }
 
 void read_energy(const fs::path& file, ViewerRun& run) {
@@ -144,9 +180,8 @@ void read_energy(const fs::path& file, ViewerRun& run) {
     run.energy_kinetic.push_back(table.finite(r, 1));
     run.energy_total.push_back(table.finite(r, 2));
   }
+  check_rows_reach_end(table, run.energy_t, run.summary);
 }
-
-bool finite_number(const nlohmann::json& j) { return j.is_number() && std::isfinite(j.get<double>()); }
 
 // The summary.json fields the page shows, each of its type (drapelab run writes them so): a
 // damaged one is named here, where the page would throw at load and stay blank (an event
@@ -275,6 +310,12 @@ ViewerRun read_viewer_run(const fs::path& dir) {
   }
   if (!run.summary.contains("events")) run.summary["events"] = nlohmann::json::array();
   check_page_fields(run.summary, sfile);
+  // The files the page shows that summary.json says the run wrote: without one the page would
+  // show the run without its form, hands or energy, or its final state for a lost trace.
+  for (const std::string& name : written_run_files(run.summary, sfile))
+    if ((name == "trace.csv" || name == "dummy.csv" || name == "hands.csv" ||
+         name == "energy.csv") && !has_run_file(dir, name))
+      throw InputError((dir / name).string(), "", "no such file (the run wrote it: summary.json)");
 
   if (has_run_file(dir, "trace.csv")) {
     run.source = "trace.csv";

@@ -175,6 +175,24 @@ class ReportBadInputTest(unittest.TestCase):
                           f"{run / 'energy.csv'} (remove", done.stderr)
             self.assertFalse((Path(tmp) / "report").exists())
 
+    def test_a_file_the_summary_says_the_run_wrote_is_required(self):
+        # Each dropped its metrics or figures silently (state.csv: the error against the
+        # reference; trace.csv: the vibration, with a note blaming output.trace_interval = 0).
+        with tempfile.TemporaryDirectory() as tmp:
+            runs = runfolder.write_experiment(Path(tmp))
+            run = Path(tmp) / runs[0]["run_dir"]
+            summary = json.loads((run / "summary.json").read_text())
+            summary["scene"].update(input={"events": []}, output={"trace_interval": 0.005})
+            (run / "summary.json").write_text(json.dumps({**summary, "object_particles": 24}))
+            hands = [(t, "right", 1, 0.0, 1.0, 0.2) for t in np.linspace(0, 1, 11)]
+            runfolder.write_hands(run, hands)
+            for name in ("state.csv", "dummy.csv", "trace.csv", "hands.csv"):
+                with self.subTest(name):
+                    kept = (run / name).read_bytes()
+                    (run / name).unlink()
+                    self.assertRefused(tmp, f"lack their files: {run / name} (remove")
+                    (run / name).write_bytes(kept)
+
     def assertRefused(self, directory, message):
         """report.py exits 2 with `message` and writes no report."""
         done = self.report(directory)

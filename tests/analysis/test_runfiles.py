@@ -341,6 +341,21 @@ class DocumentTest(runfolder.RunFolderTest):
             runfiles.read_summary(self.directory)
         self.assertIn("events[0].t: expected a finite number, got NaN", str(error.exception))
 
+    def test_the_files_a_summary_says_its_run_wrote(self):
+        self.assertEqual(runfiles.optional_run_files(self.directory, {"status": "diverged"}), [])
+        scene = {"input": {"events": []},
+                 "output": {"trace_interval": 0.01, "event_trace_interval": 0.001}}
+        summary = {"status": "ok", "object_particles": 24, "scene": scene, "restart_error": {}}
+        arrays = [f"event_trace/{name}.npy" for name in ("t", "x", "v", "fixed", "contact")]
+        self.assertEqual(runfiles.optional_run_files(self.directory, summary),
+                         ["state.csv", "dummy.csv", "hands.csv", "trace.csv", *arrays,
+                          "restart_error.csv"])
+        with self.assertRaises(ValueError) as error:
+            runfiles.optional_run_files(self.directory,
+                                        {"scene": {"output": {"trace_interval": "x"}}})
+        self.assertEqual(str(error.exception), f"{self.directory / 'summary.json'}: "
+                         'scene.output.trace_interval: expected a finite number, got "x"')
+
     def test_summary_numbers_the_energy_check_reads(self):
         runfolder.write_energy(self.directory, [0.0, 0.1], [-1.0, -1.0])
         for summary, message in (({"sim_time": None}, "sim_time: expected a finite number, got null"),

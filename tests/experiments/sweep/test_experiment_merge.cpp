@@ -2,6 +2,10 @@
 // the same experiment and of its plan, and only from folders whose experiment.json is whole.
 #include <gtest/gtest.h>
 
+#include <iterator>
+
+#include <sys/stat.h>
+
 #include "experiments/sweep/experiment_merge.hpp"
 #include "experiments/sweep/experiment_runner.hpp"
 #include "tests/experiments/sweep/experiment_fixtures.hpp"
@@ -104,6 +108,48 @@ TEST(ExperimentMerge, ChecksTheHeaderItReads) {
   const fs::path fresh = small.dir / "fresh";
   EXPECT_THROW(drape::merge_results(fresh, {victim}), drape::InputError);
   EXPECT_FALSE(fs::exists(fresh));
+}
+
+// A run whose result.json says it finished but whose file is gone, cut or no file (a named
+// pipe) is named, exit 2, in a source or in DIR (bad-input audit: merge exited 0 listing the
+// run as finished and the report dropped its metrics; a pipe was exit 4 naming the folder).
+TEST(ExperimentMerge, NamesARunFileThatIsMissingCutOrNoFile) {
+  const SmallExperiment small("merge_damaged_runs");
+  drape::run_experiment(small.experiment, small.options);
+  const fs::path run = small.options.out_dir / "runs" / small.plan[0].id;
+  const fs::path merged = small.dir / "merged";
+  const auto file_named = [&] {
+    try {
+      drape::merge_results(merged, {small.options.out_dir});
+    } catch (const drape::InputError& e) {
+      return e.file();
+    }
+    return std::string("<no error>");
+  };
+  for (const char* name : {"summary.json", "energy.csv", "state.csv"}) {
+    const fs::path file = run / name;
+    std::ifstream in(file, std::ios::binary);
+    const std::string whole{std::istreambuf_iterator<char>(in), {}};
+    in.close();
+    fs::remove(file);
+    EXPECT_EQ(file_named(), file.string()) << "missing";
+    std::ofstream(file, std::ios::binary) << whole.substr(0, 50);
+    EXPECT_EQ(file_named(), file.string()) << "cut";
+    fs::remove(file);
+    ASSERT_EQ(mkfifo(file.c_str(), 0600), 0);
+    EXPECT_EQ(file_named(), file.string()) << "a named pipe";
+    fs::remove(file);
+    std::ofstream(file, std::ios::binary) << whole;
+  }
+  const fs::path pipe = run / "notes";
+  ASSERT_EQ(mkfifo(pipe.c_str(), 0600), 0);
+  EXPECT_EQ(file_named(), pipe.string()) << "a named pipe that is no run file";
+  EXPECT_FALSE(fs::exists(merged / "runs" / small.plan[0].id)) << "a damaged run is not copied";
+  fs::remove(pipe);
+  EXPECT_EQ(file_named(), "<no error>");
+  const fs::path lost = merged / "runs" / small.plan[1].id / "energy.csv";
+  fs::remove(lost);
+  EXPECT_EQ(file_named(), lost.string());
 }
 
 }  // namespace

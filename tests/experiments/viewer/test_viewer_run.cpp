@@ -3,6 +3,7 @@
 
 #include <array>
 
+#include "tests/support/drapelab_process.hpp"
 #include "tests/support/test_support.hpp"
 #include "experiments/viewer/viewer_run.hpp"
 #include "viewer_test_files.hpp"
@@ -23,7 +24,7 @@ TEST(ViewerRun, ReadsTraceFramesFixedSetsAndEnergy) {
   EXPECT_EQ(run.frames[1].fixed, std::vector<int>({0, 1}));
   EXPECT_FALSE(run.frames[0].event);
   EXPECT_TRUE(run.frames[1].event);
-  EXPECT_EQ(run.energy_kinetic, std::vector<double>({0.0, 0.5}));
+  EXPECT_EQ(run.energy_kinetic, std::vector<double>({0.0, 0.5, 0.25}));
   EXPECT_TRUE(run.hands.empty());
 }
 
@@ -104,8 +105,9 @@ TEST(ViewerRun, ValuesNoRunWritesAreNamed) {
     EXPECT_EQ(input_error_message([&] { read_viewer_run(dir); }), (dir / name).string() + ": " + message);
   }
   testing::tiny_run("values");
-  testing::write_text(dir / "hands.csv", hands + "0,right,1,0,0,0,1,0,-1\n");
-  EXPECT_EQ(read_viewer_run(dir).hands.at(0).candidate, std::vector<int>({1}));
+  testing::write_text(dir / "hands.csv",
+                      hands + "0,right,1,0,0,0,1,0,-1\n0.1,right,1,0,0,0,0,0,-1\n");
+  EXPECT_EQ(read_viewer_run(dir).hands.at(0).candidate, std::vector<int>({1, 0}));
 }
 
 // The summary fields the page shows are checked, as are the frames before a diverged run's
@@ -193,6 +195,56 @@ TEST(ViewerRun, ATraceCutAtAFrameBoundaryIsRefused) {
   write_traced_summary(dir, 0.15, "diverged");
   EXPECT_NE(input_error_message([&] { read_viewer_run(dir); }).find("the file is cut"),
             std::string::npos);
+}
+
+// Each file the page shows that summary.json says the run wrote must be there and whole, its
+// rows to the run's end (bad-input audit: a lost or `head`-cut hands.csv, energy.csv or
+// dummy.csv gave a page of part of the run, exit 0; a lost trace.csv, its final state only).
+TEST(ViewerRun, AFileLostOrCutShortIsNamed) {
+  const auto dir = testing::tiny_run("lost_or_cut");
+  testing::write_text(dir / "summary.json",
+                      R"({"status": "ok", "sim_time": 0.1, "step_max": 0.001, "object_particles": 2,
+                          "scene": {"cloth": {"rows": 1, "cols": 2}, "input": {"events": []},
+                                    "output": {"trace_interval": 0.05}}})");
+  testing::write_text(dir / "dummy.csv", "index,section,point,x,y,z,nx,ny,nz\n"
+                                         "0,0,0,0,1,0,0,0,1\n1,0,1,0,1.1,0,0,0,1\n");
+  testing::write_text(dir / "hands.csv", "t,hand,available,x,y,z,candidate,distance,held\n"
+                                         "0,right,1,0,0,0,1,0,-1\n0.1,right,1,0,0,0,1,0,-1\n");
+  testing::write_text(dir / "state.csv", "index,row,col,x,y,z,vx,vy,vz,fixed\n"
+                                         "0,0,0,0,1,0,0,0,0,1\n1,0,1,0,0.9,0,0,0,0,0\n");
+  const ViewerRun whole = read_viewer_run(dir);
+  EXPECT_EQ(whole.source, "trace.csv");
+  EXPECT_EQ(whole.dummy_points, 2);
+  // The message for `name` replaced by its first `lines` lines (none: removed), then restored.
+  const auto message_with = [&](const std::string& name, std::size_t lines) {
+    const std::string kept = testing::read_text(dir / name);
+    std::size_t end = 0;
+    for (std::size_t k = 0; k < lines; ++k) end = kept.find('\n', end) + 1;
+    if (lines) testing::write_text(dir / name, kept.substr(0, end));
+    else std::filesystem::remove(dir / name);
+    const std::string message = input_error_message([&] { read_viewer_run(dir); });
+    testing::write_text(dir / name, kept);
+    return message;
+  };
+  for (const char* name : {"trace.csv", "dummy.csv", "hands.csv", "energy.csv"})
+    EXPECT_EQ(message_with(name, 0),
+              (dir / name).string() + ": no such file (the run wrote it: summary.json)");
+  const std::string cut = " s in summary.json (more than output.energy_interval = 0.01 s and a "
+                          "step): the file is cut";
+  EXPECT_EQ(message_with("hands.csv", 2), (dir / "hands.csv").string() +
+                ": the rows end at t = 0 s, before the run's sim_time = 0.1" + cut);
+  EXPECT_EQ(message_with("hands.csv", 1), (dir / "hands.csv").string() +
+                ": no rows, before the run's sim_time = 0.1" + cut);
+  EXPECT_EQ(message_with("energy.csv", 3), (dir / "energy.csv").string() +
+                ": the rows end at t = 0.05 s, before the run's sim_time = 0.1" + cut);
+  EXPECT_EQ(message_with("dummy.csv", 2), (dir / "dummy.csv").string() +
+                ": 1 rows, but summary.json has object_particles 2: the file is cut");
+  // `head -c`: the last number may be cut short yet still parse.
+  const std::string energy = testing::read_text(dir / "energy.csv");
+  testing::write_text(dir / "energy.csv", energy.substr(0, energy.size() - 2));
+  EXPECT_EQ(input_error_message([&] { read_viewer_run(dir); }),
+            (dir / "energy.csv").string() +
+                ": line 4: the last line is cut (the file does not end in a newline)");
 }
 
 TEST(ViewerRun, AFolderOrNamedPipeInAFilesPlaceIsNamedNotTakenAsAbsent) {

@@ -18,7 +18,8 @@ inline void write_text(const std::filesystem::path& file, const std::string& tex
   std::ofstream(file) << text;
 }
 
-/// A 1 x 2 cloth run with two trace frames, particle 0 pinned, one hold event.
+/// A 1 x 2 cloth run with two trace frames, particle 0 pinned, one hold event, energy rows to
+/// its end.
 inline std::filesystem::path tiny_run(const std::string& name) {
   const auto dir = fresh_folder(name);
   write_text(dir / "summary.json",
@@ -30,7 +31,8 @@ inline std::filesystem::path tiny_run(const std::string& name) {
              "0,0,0,1,0,0,0,0,1,-1,0\n0,1,0.02,1,0,0,0,0,0,-1,0\n"
              "0.05,0,0,1,0,0,0,0,1,-1,1\n0.05,1,0.02,0.99,0.01,0,0,0,1,-1,1\n");
   write_text(dir / "energy.csv",
-             "t,kinetic,spring,gravity,collision,total\n0,0,0,1,0,1\n0.05,0.5,0,0.9,0,1.4\n");
+             "t,kinetic,spring,gravity,collision,total\n0,0,0,1,0,1\n0.05,0.5,0,0.9,0,1.4\n"
+             "0.1,0.25,0,0.95,0,1.2\n");
   return dir;
 }
 
