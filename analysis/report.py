@@ -28,7 +28,7 @@ except ImportError:  # drapelab report checks for matplotlib and numpy only
     sys.exit("report.py needs pandas (Debian: apt install python3-pandas; install_dependencies.sh installs it)")
 
 from drapeanalysis import metrics, plots, report_options, runfiles, stats, table_columns, viewer_pages  # noqa: E402
-from drapeanalysis.fileio import OutputError, atomic_output, output_folder  # noqa: E402
+from drapeanalysis.fileio import OutputError, atomic_output, check_writable_folder, output_folder  # noqa: E402
 from drapeanalysis.figure_catalogue import CAPTIONS, FIGURE_METRIC  # noqa: E402
 
 # The summary's method x scene tables: column, title, unit, scale to that unit.
@@ -367,6 +367,8 @@ def main():
     try:
         if args.drapelab is not None:
             report_options.check_drapelab(args.drapelab)
+        if args.directory.is_dir():
+            check_writable_folder(args.directory)
         remove_previous_report(args.directory / "report")
         results = runfiles.load_complete_experiment(args.directory)
         animated = (report_options.animated_runs(args.directory, results["runs"], args.animate)

@@ -82,3 +82,17 @@ def output_folder(path):
     except OSError as e:
         raise OutputError(f"cannot create folder {path}: {e.strerror or e}") from e
     return path
+
+
+def check_writable_folder(path):
+    """A ValueError (bad input, exit status 2) naming the existing folder `path` when a file
+    cannot be created in it: tried by creating a probe and removing it, as permissions do not
+    tell everything (root, read-only mounts). Checked before any work, a folder the report
+    cannot write into is named up front, not found by the first write after the figures."""
+    probe = Path(path) / f".drapelab-write-probe-{os.getpid()}"
+    try:
+        probe.touch(exist_ok=False)
+    except OSError as e:
+        raise ValueError(f"{path}: cannot be written ({e.strerror or e}): the report writes "
+                         "its files there") from e
+    probe.unlink()

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -48,6 +49,21 @@ inline std::optional<std::string> unwritable_file_reason(const std::string& file
   if (ec && ec != std::errc::no_such_file_or_directory) return ec.message();
   if (std::filesystem::is_fifo(status) || std::filesystem::is_socket(status))
     return "is a named pipe or socket, not a file to write";
+  return std::nullopt;
+}
+
+/// Why `file` cannot be opened for writing, or nothing: tried by opening it for appending,
+/// which changes nothing, and removing it again when it did not exist, since permissions do not
+/// tell everything (root, /proc, read-only mounts). Checked before any work, a place that cannot
+/// be written is bad input named up front (exit 2), not a failed write at the end (exit 4).
+inline std::optional<std::string> open_for_writing_reason(const std::string& file) {
+  std::error_code ec;
+  const bool existed = std::filesystem::exists(std::filesystem::symlink_status(file, ec));
+  std::ofstream probe(file, std::ios::app);
+  const int error = errno;
+  if (!probe) return std::string("cannot be written: ") + std::strerror(error);
+  probe.close();
+  if (!existed) std::filesystem::remove(file, ec);
   return std::nullopt;
 }
 

@@ -3,12 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <string>
 #include <vector>
 
 #include "core/scene/input_error.hpp"
@@ -60,15 +56,7 @@ void check_output(const std::string& in, const std::string& out) {
   const fs::path parent = fs::absolute(out).parent_path();
   if (!fs::is_directory(parent, ec))
     throw InputError(out, "", "its folder " + parent.string() + " does not exist");
-  // Permissions do not tell everything (root, /proc, read-only mounts): OUT is opened for
-  // appending, which changes nothing, and removed again if it did not exist, so that a folder
-  // it cannot be written in is bad input named up front (exit 2), not a failed write (exit 4).
-  const bool existed = fs::exists(fs::symlink_status(out, ec));
-  std::ofstream probe(out, std::ios::app);
-  const int error = errno;
-  if (!probe) throw InputError(out, "", std::string("cannot be written: ") + std::strerror(error));
-  probe.close();
-  if (!existed) fs::remove(out, ec);
+  if (const auto reason = open_for_writing_reason(out)) throw InputError(out, "", *reason);
 }
 
 }  // namespace

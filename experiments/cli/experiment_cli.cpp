@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "core/scene/input_error.hpp"
+#include "core/scene/output_error.hpp"
 #include "experiments/cli/decimal_integer.hpp"
 #include "experiments/sweep/experiment.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
@@ -81,6 +82,14 @@ int experiment_command(const std::string& file, const std::string& out_dir, int 
 }
 
 int merge_command(const std::string& out_dir, const std::vector<std::string>& sources) {
+  // A folder merge cannot write its results in (each goes to a new file, renamed) is named
+  // before any run is copied (exit 2), not found by the last write (exit 4).
+  std::error_code ec;
+  const fs::path probe =
+      fs::path(out_dir) / (".drapelab-write-probe-" + std::to_string(::getpid()));
+  if (fs::is_directory(out_dir, ec))
+    if (const auto reason = open_for_writing_reason(probe.string()))
+      throw InputError(out_dir, "", *reason);
   const std::vector<fs::path> paths(sources.begin(), sources.end());
   const std::vector<std::string> missing = merge_results(out_dir, paths);
   if (missing.empty()) return 0;

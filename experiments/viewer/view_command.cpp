@@ -30,7 +30,8 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
 }
 
 // Throws InputError naming --out when the page would replace a file or folder of a run it
-// shows, or of that run's experiment (`view RUN --out RUN/summary.json` replaced the summary).
+// shows, or of that run's experiment (`view RUN --out RUN/summary.json` replaced the summary),
+// or cannot be written; makes the page's folder.
 void check_out(const fs::path& out, const std::vector<std::string>& run_dirs) {
   if (const auto reason = unwritable_file_reason(out.string()))
     throw InputError(out.empty() ? "--out" : out.string(), out.empty() ? "" : "--out", *reason);
@@ -53,6 +54,14 @@ void check_out(const fs::path& out, const std::vector<std::string>& run_dirs) {
                                                   experiment.string() +
                                                   "): name another HTML file");
   }
+  // A folder that cannot be made or a file that cannot be written is named now (exit 2), not
+  // found by the write at the end (exit 4).
+  if (out.has_parent_path()) {
+    fs::create_directories(out.parent_path(), ec);
+    if (ec) throw InputError(out.string(), "--out", "its folder cannot be made: " + ec.message());
+  }
+  if (const auto reason = open_for_writing_reason(out.string()))
+    throw InputError(out.string(), "--out", *reason);
 }
 
 }  // namespace
@@ -76,7 +85,6 @@ void view_command(const std::vector<std::string>& run_dirs, const std::string& o
   const std::filesystem::path out(out_file);
   check_out(out, run_dirs);
   const std::string page = viewer_page(runs);
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
   errno = 0;
   std::ofstream file(out, std::ios::binary);
   if (!(file << page) || !file.flush()) fail_write(out_file);  // a cut page would load as an empty viewer
