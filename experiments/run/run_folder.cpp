@@ -1,5 +1,6 @@
 #include "experiments/run/run_folder.hpp"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -138,6 +139,25 @@ std::vector<std::string> written_run_files(const nlohmann::json& summary, const 
       names.push_back(std::string("event_trace/") + array + ".npy");
   if (summary.contains("restart_error")) names.push_back("restart_error.csv");
   return names;
+}
+
+std::string rows_short_of_end(std::optional<double> last_t, const nlohmann::json& summary) {
+  const auto number = [&](const char* pointer, double fallback) {
+    const nlohmann::json::json_pointer at(pointer);
+    return summary.contains(at) && summary[at].is_number() &&
+                   std::isfinite(summary[at].get<double>())
+               ? summary[at].get<double>()
+               : fallback;
+  };
+  const double end = number("/sim_time", std::nan(""));
+  if (std::isnan(end)) return "";
+  const double interval = number("/scene/output/energy_interval", 0.01);
+  const double slack = interval + number("/step_max", 0.0) + 1e-9 * std::max(1.0, std::abs(end));
+  if (last_t && *last_t >= end - slack) return "";
+  return (last_t ? fmt::format("the rows end at t = {} s", *last_t) : std::string("no rows")) +
+         fmt::format(", before the run's sim_time = {} s in summary.json (more than "
+                     "output.energy_interval = {} s and a step): the file is cut",
+                     end, interval);
 }
 
 void clear_run_folder(const fs::path& dir) {

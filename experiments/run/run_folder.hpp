@@ -5,6 +5,7 @@
 // exists.
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,12 @@ void check_run_folder_not_experiment(const std::filesystem::path& dir);
 /// hands.csv with `input`; trace.csv and event_trace/*.npy with their intervals;
 /// restart_error.csv with `restart_error`. An InputError names a field of the wrong type.
 std::vector<std::string> written_run_files(const nlohmann::json& summary, const std::string& file);
+/// Why rows of energy.csv or hands.csv whose last time is `last_t` (nothing: no rows) fall short
+/// of the end of the run its `summary` describes, or "": a run writes them at the first step
+/// end after each output.energy_interval and at its end, so a file cut at a line's end ends
+/// more than an interval and a step (a run that stopped writes no row of its last step) before
+/// sim_time. A summary without a finite sim_time is not checked.
+std::string rows_short_of_end(std::optional<double> last_t, const nlohmann::json& summary);
 /// Creates `dir` and removes every run file in it (nothing else), summary.json first.
 void clear_run_folder(const std::filesystem::path& dir);
 

@@ -98,28 +98,12 @@ ViewerFrame read_state(const fs::path& file, int particles, double t) {
 
 bool finite_number(const nlohmann::json& j) { return j.is_number() && std::isfinite(j.get<double>()); }
 
-// energy.csv and hands.csv get rows at the first step end after each output.energy_interval and
-// at the end: a file cut at a line's end (a full disk, `head`) ends more than an interval and a
-// step (a run that stopped writes no row of its last step) before the summary's sim_time. A
-// summary without sim_time (of another kind) is not checked.
+// A file of rows cut at a line's end (a full disk, `head`) is named: rows_short_of_end's rule.
 void check_rows_reach_end(const CsvTable& table, const std::vector<double>& times,
                           const nlohmann::json& summary) {
-  const auto number = [&](const char* pointer, double fallback) {
-    const nlohmann::json::json_pointer at(pointer);
-    return summary.contains(at) && finite_number(summary[at]) ? summary[at].get<double>()
-                                                              : fallback;
-  };
-  const double end = number("/sim_time", std::nan(""));
-  if (std::isnan(end)) return;
-  const double interval = number("/scene/output/energy_interval", 0.01);
-  const double slack = interval + number("/step_max", 0.0) + 1e-9 * std::max(1.0, std::abs(end));
-  if (times.empty() || times.back() < end - slack)
-    throw InputError(table.file(), "",
-                     (times.empty() ? std::string("no rows")
-                                    : fmt::format("the rows end at t = {} s", times.back())) +
-                         fmt::format(", before the run's sim_time = {} s in summary.json (more "
-                                     "than output.energy_interval = {} s and a step): the file "
-                                     "is cut", end, interval));
+  const std::string cut = rows_short_of_end(
+      times.empty() ? std::nullopt : std::optional<double>(times.back()), summary);
+  if (!cut.empty()) throw InputError(table.file(), "", cut);
 }
 
 void read_dummy(const fs::path& file, ViewerRun& run) {

@@ -141,6 +141,17 @@ TEST(ExperimentMerge, NamesARunFileThatIsMissingCutOrNoFile) {
     fs::remove(file);
     std::ofstream(file, std::ios::binary) << whole;
   }
+  // energy.csv cut at a line's end: whole lines, but its rows stop short of the run's end.
+  {
+    const fs::path energy = run / "energy.csv";
+    std::ifstream in(energy, std::ios::binary);
+    const std::string whole{std::istreambuf_iterator<char>(in), {}};
+    in.close();
+    const std::size_t second_line = whole.find('\n', whole.find('\n') + 1);
+    std::ofstream(energy, std::ios::binary) << whole.substr(0, second_line + 1);
+    EXPECT_EQ(file_named(), energy.string()) << "cut at a line's end";
+    std::ofstream(energy, std::ios::binary) << whole;
+  }
   const fs::path pipe = run / "notes";
   ASSERT_EQ(mkfifo(pipe.c_str(), 0600), 0);
   EXPECT_EQ(file_named(), pipe.string()) << "a named pipe that is no run file";
