@@ -10,6 +10,7 @@ import numpy as np
 from matplotlib import animation
 
 from . import runfiles, snapshots, style
+from .run_series import read_run_series
 from .fileio import atomic_output
 
 MAX_FRAMES = 300
@@ -35,7 +36,7 @@ def animate_run(run, out_file, max_frames=MAX_FRAMES, fps=FPS):
     """Writes out_file (MP4): the run's trace frames, evenly thinned to at most max_frames, front
     and side views side by side, played at fps frames a second. Returns out_file."""
     summary = runfiles.read_summary(run)
-    trace = runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))
+    trace = runfiles.trace_frames(read_run_series(run, summary, "trace.csv"))
     rows, cols = snapshots.cloth_grid(run, summary, trace)
     objects, points = snapshots.object_surface(run)
     frames = np.unique(np.linspace(0, len(trace["t"]) - 1, min(max_frames, len(trace["t"]))).astype(int))

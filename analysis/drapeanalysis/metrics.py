@@ -4,6 +4,7 @@ import math
 import numpy as np
 
 from . import runfiles, spectral
+from .run_series import read_run_series
 
 # Defaults of the vibration metrics (docs/analysis.md): window after an event and the speed
 # below which cloth rests. The cutoff between slow motion and vibration comes from the model
@@ -18,6 +19,10 @@ SHORT_HORIZON = 1.0 / 30.0
 # Frames of a run and of its reference are the same instant when their times agree this well
 # (both are t_e + k dt_trace computed the same way).
 SAME_INSTANT = 1e-9
+# The drift columns drapelab's summary.json gives (experiments/run/run_scene.cpp), emptied with
+# the analysis's own for a run that did not finish.
+SUMMARY_DRIFT = ("energy_drift_max_abs", "energy_drift_max_rel", "energy_drift_final_rel",
+                 "energy_rise_max_rel")
 
 
 def energy_drift(energy):
@@ -111,8 +116,9 @@ def vibration(run, summary, window=VIBRATION_WINDOW):
     except ValueError as e:
         raise ValueError(f"{run / 'summary.json'}: {e}") from e
     cutoff = model["cutoff_hz"]
-    trace = runfiles.trace_frames(runfiles.read_trace(coarse_file)) if coarse_file.exists() else None
-    hands = runfiles.read_hands(run / "hands.csv") if (run / "hands.csv").exists() else None
+    trace = (runfiles.trace_frames(read_run_series(run, summary, "trace.csv")) if coarse_file.exists()
+             else None)
+    hands = read_run_series(run, summary, "hands.csv") if (run / "hands.csv").exists() else None
     after_events = fine if fine is not None else trace
     end = float((trace if trace is not None else fine)["t"][-1])
     times = _event_times(summary)
@@ -215,7 +221,7 @@ def mapping_error(run, summary):
     states = {}
     states["final"] = runfiles.positions(runfiles.read_state(run / "state.csv"))
     if (run / "trace.csv").exists():
-        trace = runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))
+        trace = runfiles.trace_frames(read_run_series(run, summary, "trace.csv"))
         at_map = np.nonzero(trace["event"] & np.isclose(trace["t"], maps[0]["t"]))[0]
         if len(at_map):
             states["mapped"] = trace["x"][at_map[-1]]
@@ -339,7 +345,12 @@ def run_metrics(directory, row, rows_by_id):
         return out, windows
     summary = runfiles.read_summary(run)
     if (run / "energy.csv").exists():
-        out.update(energy_drift(runfiles.read_run_energy(run, summary)))
+        drift = energy_drift(read_run_series(run, summary, "energy.csv"))
+        if summary.get("status") != "ok":
+            # A run that stopped early has no drift to compare with a finished run's: one that
+            # diverged before its first energy row would read 0 (docs/analysis.md, Energy drift).
+            drift = dict.fromkeys(list(drift) + list(SUMMARY_DRIFT), math.nan)
+        out.update(drift)
     vib, windows = vibration(run, summary)
     out.update(vib)
     out.update(mapping_error(run, summary))

@@ -97,28 +97,6 @@ def read_energy(path):
     return energy
 
 
-def read_run_energy(run, summary):
-    """A run's energy.csv, refused (a ValueError naming it) when its rows end before the run's
-    `sim_time` (summary.json) by more than an output interval and a step: a cut file, whose
-    metrics would describe the start of the run only. That much is allowed because a diverged
-    or failed run does not write its last step's row."""
-    path, summary_path = Path(run) / "energy.csv", Path(run) / "summary.json"
-    energy = read_energy(path)
-    if "sim_time" not in summary:
-        raise ValueError(f"{summary_path}: no sim_time")
-    end = finite_number(summary["sim_time"], summary_path, "sim_time")
-    interval = finite_number(scene_value(summary, "output.energy_interval", 0.01), summary_path,
-                             "scene.output.energy_interval")
-    slack = (interval + finite_number(summary.get("step_max", 0.0), summary_path, "step_max")
-             + 1e-9 * max(abs(end), 1.0))
-    last = float(energy["t"].iloc[-1])
-    if last < end - slack:
-        raise ValueError(f"{path}: the rows end at t = {last:g} s, before the run's sim_time = {end:g} s "
-                         f"in summary.json (more than output.energy_interval = {interval:g} s and a step): "
-                         "the file is cut")
-    return energy
-
-
 def read_dummy(path):
     """dummy.csv: index, section, point, x, y, z, nx, ny, nz (the drawings need the sections)."""
     return read_csv(path, ("section", "point", "x", "y", "z"))

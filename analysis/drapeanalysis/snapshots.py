@@ -9,6 +9,7 @@ import numpy as np
 from matplotlib.collections import PolyCollection
 
 from . import runfiles, style
+from .run_series import read_run_series
 
 MAX_METHODS = 7
 MAX_INSTANTS = 6
@@ -160,7 +161,7 @@ def scene_figures(directory, out_dir, scene, rows):
         # A run without summary.json did not finish (its trace may stop anywhere) and has no grid.
         if (run / "trace.csv").exists() and (run / "summary.json").exists():
             summary = runfiles.read_summary(run)
-            trace = runfiles.trace_frames(runfiles.read_trace(run / "trace.csv"))
+            trace = runfiles.trace_frames(read_run_series(run, summary, "trace.csv"))
             runs.append((row, summary, trace, cloth_grid(run, summary, trace)))
     if not runs:
         return []

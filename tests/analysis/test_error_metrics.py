@@ -31,7 +31,8 @@ class MappingErrorTest(runfolder.RunFolderTest):
         # event): squeezed 2 %, 1 mm inside it. Object particles on y = 0 right under both grids
         # (and far away ones), so each particle's nearest distance is its height.
         run = self.make_run()
-        runfolder.write_summary(run, [{"t": 0.1, "type": "hold"}, {"t": 0.3, "type": "map"}], self.scene())
+        runfolder.write_summary(run, [{"t": 0.1, "type": "hold"}, {"t": 0.3, "type": "map"}], self.scene(),
+                                sim_time=0.4)
         final = self.grid(1.03, self.delta + 0.002)
         mapped = self.grid(0.98, self.delta - 0.001)
         objects = np.concatenate([final, mapped, [[5.0, 5.0, 5.0], [-3.0, 0.0, 1.0]]])

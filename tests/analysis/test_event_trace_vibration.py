@@ -15,7 +15,8 @@ class EventTraceVibrationTest(RunFolderTest):
         # it is a constant and reads 0; event_trace/ at 1 kHz sees it, and the event window must
         # read A / sqrt(2) from it.
         run = self.make_run()
-        runfolder.write_summary(run, [{"t": 0.2, "type": "hold", "hand": "left"}], runfolder.CLOTH_SCENE)
+        runfolder.write_summary(run, [{"t": 0.2, "type": "hold", "hand": "left"}], runfolder.CLOTH_SCENE,
+                                sim_time=1.0)
         amplitude, f = 1e-3, 200.0
         d = runfolder.unit_directions(1)
 

@@ -73,6 +73,17 @@ class EnergyDriftTest(runfolder.RunFolderTest):
         self.assertEqual(windows, [])
         self.assertNotIn("vibration_rms_final", out, "no trace.csv, no vibration")
 
+    def test_a_diverged_run_has_no_drift(self):
+        # Diverged at the first step: its one energy row reads a drift of 0, and drapelab's own
+        # summary columns too; all of them are emptied, as the run is not comparable.
+        run = self.make_run()
+        runfolder.write_summary(run, status="diverged", sim_time=0.006, step_max=0.002)
+        runfolder.write_energy(run, [0.0], [-4.0])
+        out, _ = metrics.run_metrics(self.directory, self.row(), {})
+        for column in ("energy_drift_max_rel", "energy_drift_final_rel", "energy_drift_rate",
+                       "energy_drift_exponent") + metrics.SUMMARY_DRIFT:
+            self.assertTrue(math.isnan(out[column]), column)
+
 
 class VibrationWindowTest(runfolder.RunFolderTest):
     # The spectral split (test_spectral.py) reads a sinusoid 10 times above the cutoff within
@@ -176,7 +187,7 @@ class RunVibrationTest(runfolder.RunFolderTest):
         events = [{"t": 0.2, "type": "hold", "hand": "left"},
                   {"t": 1.0, "type": "ignored", "reason": "no candidate"},
                   {"t": 2.0, "type": "release", "hand": "left"}]
-        runfolder.write_summary(run, events, runfolder.CLOTH_SCENE)
+        runfolder.write_summary(run, events, runfolder.CLOTH_SCENE, sim_time=3.0)
         # Frames every 1 ms to 3 s; those at the hold and the release are event frames (one frame
         # a time: experiments/run/frame_recorder.cpp).
         step = np.arange(3001) / 1000.0
@@ -236,7 +247,7 @@ class RunVibrationTest(runfolder.RunFolderTest):
         runfolder.write_summary(run, [{"t": 0.2, "type": "attach", "hand": "left"},
                                       {"t": 0.25, "type": "attach_fixed", "hand": "left"},
                                       {"t": 0.6, "type": "release", "hand": "left"}],
-                                runfolder.CLOTH_SCENE)
+                                runfolder.CLOTH_SCENE, sim_time=1.2)
         t = np.arange(1201) / 1000.0
         event = np.zeros(len(t), int)
         event[np.searchsorted(t, [0.2, 0.25, 0.6])] = 1
@@ -254,7 +265,7 @@ class RunVibrationTest(runfolder.RunFolderTest):
 
     def test_run_without_events_settles_from_the_start(self):
         run = self.make_run()
-        runfolder.write_summary(run, [{"t": 0.5, "type": "ignored"}], runfolder.CLOTH_SCENE)
+        runfolder.write_summary(run, [{"t": 0.5, "type": "ignored"}], runfolder.CLOTH_SCENE, sim_time=1.0)
         t = np.arange(1001) / 1000.0
         d = runfolder.unit_directions(2)
         v = (0.2 * np.exp(-t / 0.1))[:, None, None] * d[None]

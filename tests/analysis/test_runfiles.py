@@ -59,23 +59,6 @@ class BadInputTest(unittest.TestCase):
             runfiles.read_energy(self.run / "energy.csv")
         self.assertNamesFile(error, self.run / "energy.csv", "the last line is cut")
 
-    def test_energy_rows_ending_before_the_run(self):
-        scene = {"output": {"energy_interval": 0.1}}
-        runfolder.write_energy(self.run, [0.0, 0.1, 0.2], [-1.0, -1.0, -1.0])
-        # A diverged run's last row lags its sim_time by up to an interval and a step.
-        runfolder.write_summary(self.run, scene=scene, status="diverged", sim_time=0.32, step_max=0.025)
-        summary = runfiles.read_summary(self.run)
-        self.assertEqual(list(runfiles.read_run_energy(self.run, summary)["t"]), [0.0, 0.1, 0.2])
-        summary["sim_time"] = 0.33
-        with self.assertRaises(ValueError) as error:
-            runfiles.read_run_energy(self.run, summary)
-        self.assertNamesFile(error, self.run / "energy.csv", "the rows end at t = 0.2 s",
-                             "sim_time = 0.33 s", "output.energy_interval = 0.1 s", "the file is cut")
-        del summary["sim_time"]
-        with self.assertRaises(ValueError) as error:
-            runfiles.read_run_energy(self.run, summary)
-        self.assertNamesFile(error, self.run / "summary.json", "no sim_time")
-
     def test_missing_state_column(self):
         runfolder.write_csv(self.run / "state.csv", "index,row,col,x,y", [(0, 0, 0, 1.0, 2.0)])
         ref = self.directory / "runs" / "ref"
@@ -355,16 +338,6 @@ class DocumentTest(runfolder.RunFolderTest):
                                         {"scene": {"output": {"trace_interval": "x"}}})
         self.assertEqual(str(error.exception), f"{self.directory / 'summary.json'}: "
                          'scene.output.trace_interval: expected a finite number, got "x"')
-
-    def test_summary_numbers_the_energy_check_reads(self):
-        runfolder.write_energy(self.directory, [0.0, 0.1], [-1.0, -1.0])
-        for summary, message in (({"sim_time": None}, "sim_time: expected a finite number, got null"),
-                                 ({"sim_time": 0.1, "step_max": "x"}, 'step_max: expected a finite number, got "x"'),
-                                 ({"sim_time": 0.1, "scene": {"output": {"energy_interval": []}}},
-                                  "scene.output.energy_interval: expected a finite number, got []")):
-            with self.subTest(message), self.assertRaises(ValueError) as error:
-                runfiles.read_run_energy(self.directory, summary)
-            self.assertEqual(str(error.exception), f"{self.directory / 'summary.json'}: {message}")
 
 
 if __name__ == "__main__":
