@@ -23,39 +23,14 @@ import sys
 from collections import Counter
 
 try:
-    import pandas as pd
+    import pandas  # noqa: F401  (the summary and the metrics read run files with it)
 except ImportError:  # drapelab report checks for matplotlib and numpy only
     sys.exit("report.py needs pandas (Debian: apt install python3-pandas; install_dependencies.sh installs it)")
 
-from drapeanalysis import metrics, plots, report_options, runfiles, stats, table_columns, viewer_pages  # noqa: E402
+from drapeanalysis import metrics, plots, report_options, runfiles, table_columns, viewer_pages  # noqa: E402
+from drapeanalysis.report_summary import SUMMARY_NOTE, method_name, summary_tables, unfinished_banner  # noqa: E402
 from drapeanalysis.fileio import OutputError, atomic_output, check_writable_folder, output_folder  # noqa: E402
 from drapeanalysis.figure_catalogue import CAPTIONS, FIGURE_METRIC  # noqa: E402
-
-# The summary's method x scene tables: column, title, unit, scale to that unit.
-SUMMARY_METRICS = (
-    ("vibration_rms_events", "Vibration after the manipulations (largest event window)", "mm", 1e3),
-    ("vibration_rms_after_hold", "Vibration after a hold", "mm", 1e3),
-    ("vibration_rms_after_release", "Vibration after a release", "mm", 1e3),
-    ("vibration_rms_after_attach", "Vibration after an attach", "mm", 1e3),
-    ("vibration_rms_after_attach_fixed", "Vibration after an attached particle is fixed", "mm", 1e3),
-    ("vibration_rms_after_map", "Vibration after a map", "mm", 1e3),
-    ("vibration_rms_final", "Vibration over the last 0.5 s", "mm", 1e3),
-    ("slow_motion_rms_final", "Slow motion over the last 0.5 s", "mm", 1e3),
-    ("restart_error_start", "Restart error at the first horizon after the start", "mm", 1e3),
-    ("restart_error_events", "Restart error at the first horizon after the events (the reference restarted from the run's state)", "mm", 1e3),
-    ("restart_error_after_hold", "Restart error at the first horizon after a hold", "mm", 1e3),
-    ("restart_error_after_release", "Restart error at the first horizon after a release", "mm", 1e3),
-    ("restart_error_after_attach", "Restart error at the first horizon after an attach", "mm", 1e3),
-    ("restart_error_events_rel", "Restart error after the events / the reference's own motion over the first horizon", "1", 1.0),
-    ("restart_motion_events", "The reference's own motion over the first horizon after the events (scale of the restart error)", "mm", 1e3),
-    ("short_error_start", "RMS error against the reference 1/30 s after the start", "mm", 1e3),
-    ("short_error_events_inherited", "RMS error against the reference at the events", "mm", 1e3),
-    ("short_error_events", "RMS error against the reference 1/30 s after the events", "mm", 1e3),
-    ("error_rms", "RMS error of the final positions against the reference", "mm", 1e3),
-    ("attach_error_mean", "Attach error (distance from p_o + delta n_o)", "cm", 1e2),
-    ("energy_drift_max_rel", "Largest relative energy change from the start (manipulations and damping included)", "1", 1.0),
-    ("wall_seconds", "Wall time", "s", 1.0),
-)
 
 # The provenance fields of the results table (docs/outputs.md, Provenance) and their titles.
 PROVENANCE = (("version", "drapelab version"), ("git_commit", "git commit"), ("build_type", "build type"),
@@ -110,58 +85,6 @@ def cell(value):
     if isinstance(value, bool):
         return str(value).lower()
     return value
-
-
-def method_name(row, parameters):
-    """A run's method: integrator, step and the swept values other than the scene."""
-    rest = plots.label(row, parameters, ("integrator.dt", "scene") + plots.INTEGRATOR_DETAIL)
-    name = plots.method_label(row) + (" (reference)" if row.get("is_reference") else "")
-    return name if rest == plots.scene_name(row) else f"{name}, {rest}"
-
-
-def summary_cell(r, metric, scale):
-    """One cell of a summary table: the mean in the table's unit, +- the 95 % half-width over
-    the runs with a value, and, for a method run more than once, their number n, "of N" when
-    some of its N runs have none (diverged, or without that event); a dash for none."""
-    count, runs = r[f"{metric}_n"], r["n"]
-    if not count:
-        return "&ndash;"
-    value = f"{r[f'{metric}_mean'] * scale:.3g}"
-    if count > 1:
-        value += f" &plusmn; {r[f'{metric}_ci95'] * scale:.2g}"
-    if runs > 1:
-        value += f" (n={count}" + (f" of {runs})" if count < runs else ")")
-    return value
-
-
-def summary_tables(rows, parameters):
-    """Method x scene tables of the main metrics (mean over repeats, +- the 95 % half-width when
-    a method was run more than once), in their units; empty metrics left out."""
-    # The repeats of an ensemble differ only in their seed (docs/experiments.md, "Ensembles"):
-    # one method, one row.
-    parameters = [p for p in parameters if p != plots.REPEAT_PARAMETER]
-    # Only finished runs give values: a diverged run's energy rows stop before it blows up (its
-    # drift reads 0 when it diverged before the first), and its other metrics measure nothing.
-    frame = pd.DataFrame([{"method": method_name(r, parameters), "scene": plots.scene_name(r),
-                           **{m: plots.number(r.get(m)) if r.get("status") == "ok" else math.nan
-                              for m, *_ in SUMMARY_METRICS}} for r in rows])
-    if frame.empty:
-        return ""
-    order = list(dict.fromkeys(frame["method"]))
-    summary = stats.summarise(frame, ["method", "scene"], [m for m, *_ in SUMMARY_METRICS])
-    parts = []
-    for metric, title, unit, scale in SUMMARY_METRICS:
-        if not summary[f"{metric}_n"].any():
-            continue
-        cells = summary.apply(lambda r: summary_cell(r, metric, scale), axis=1)
-        table = summary.assign(cell=cells).pivot(index="method", columns="scene", values="cell")
-        table = table.reindex([m for m in order if m in table.index]).fillna("&ndash;")
-        head = "".join(f"<th>{html.escape(c)}</th>" for c in table.columns)
-        body = "".join(f"<tr><th>{html.escape(m)}</th>" + "".join(f"<td>{v}</td>" for v in table.loc[m]) + "</tr>"
-                       for m in table.index)
-        parts.append(f"<h3>{html.escape(title)} [{unit}]</h3><table class='summary'><tr><th>method</th>"
-                     f"{head}</tr>{body}</table>")
-    return "".join(parts)
 
 
 def provenance_html(rows):
@@ -283,13 +206,11 @@ def write_html(out_dir, results, rows, figures, videos=(), pages=None):
     SVG and PDF, snapshots to their scene's viewer page), animations, the full table folded away."""
     parts = [f"<h1>{html.escape(results['name'])}</h1>",
              f"<p><b>Question.</b> {html.escape(results.get('question') or '')}</p>",
-             provenance_html(rows)]
+             unfinished_banner(rows, results["parameters"]), provenance_html(rows)]
     scene_pages = pages[2] if pages else {}
     summary = summary_tables(rows, results["parameters"])
     if summary:
-        parts.append("<h2>Summary</h2><p>Method x scene: mean &plusmn; 95 % half-width over the n runs with a value; "
-                     "a dash: none has one (diverged, the metric does not apply, or its event did not "
-                     "happen, such as an attach not fixed by the run's end).</p>" + summary)
+        parts.append("<h2>Summary</h2>" + SUMMARY_NOTE + summary)
     parts.append(viewer_html(rows, results["parameters"], pages))
     parts.append("<h2>Figures</h2>")
     for stem, caption in figures:
@@ -306,10 +227,13 @@ def write_html(out_dir, results, rows, figures, videos=(), pages=None):
                  + "</details>")
     parts.append("<p>Every parameter and metric: <a href='../metrics.csv'>metrics.csv</a>, "
                  "<a href='../metrics.json'>metrics.json</a>. Metrics: docs/analysis.md.</p>")
-    style = ("body{font-family:sans-serif;margin:2em;max-width:80em}img{max-width:100%}"
+    # Prose keeps a readable measure; tables and figures take the window's width (the runs
+    # table scrolls in its own box when wider).
+    style = ("body{font-family:sans-serif;margin:2em}p,ul,figcaption{max-width:70em}img{max-width:100%}"
+             "div.banner{border:2px solid #c00;background:#fff4f4;padding:0 1em;margin:1em 0}"
              "table{border-collapse:collapse;font-size:80%;margin-bottom:1em}"
              "td,th{border:1px solid #ccc;padding:2px 5px}table.summary td{text-align:right}"
-             "figure{margin:1em 0}figcaption{max-width:60em}summary{cursor:pointer}"
+             "figure{margin:1em 0}summary{cursor:pointer}"
              "table.provenance th{text-align:left;background:#f4f4f4}div.wide{overflow-x:auto}")
     page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{html.escape(results['name'])}"
             f"</title><style>{style}</style></head><body>{''.join(parts)}</body></html>\n")

@@ -3,7 +3,7 @@ metric; every length is in m, every time in s)."""
 
 # Columns of the report's table besides the parameters; every column is in metrics.csv.
 TABLE_COLUMNS = (
-    "status", "steps", "rhs_evals", "wall_seconds", "energy_drift_max_rel",
+    "status", "sim_time", "reason", "steps", "rhs_evals", "wall_seconds", "energy_drift_max_rel",
     "energy_drift_final_rel", "energy_drift_exponent", "attach_error_mean", "vibration_rms_final",
     "vibration_rms_events", "vibration_rms_holding", "hand_jitter_rms_holding", "settle_time", "contact_switch_rate_final", "hand_jitter_rms_final",
     "mapping_gap_mean_mapped", "mapping_gap_mean_final", "mapping_gap_max_final",
@@ -16,6 +16,7 @@ TABLE_COLUMNS = (
 # (`stable_value`: the bisected parameter's).
 UNITS = {
     "wall_seconds": "s",
+    "sim_time": "s",
     "energy_drift_max_rel": "of E(0)",
     "energy_drift_final_rel": "of E(0)",
     "energy_drift_exponent": "1",

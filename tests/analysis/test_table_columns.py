@@ -3,8 +3,8 @@ import unittest
 
 from drapeanalysis import table_columns
 
-# Counts, a status, and the bisected parameter's own value: no unit of their own.
-UNITLESS = {"status", "steps", "rhs_evals", "stable_value"}
+# Counts, a status and its reason (text), and the bisected parameter's own value: no unit of their own.
+UNITLESS = {"status", "reason", "steps", "rhs_evals", "stable_value"}
 
 
 class TableColumnsTest(unittest.TestCase):
