@@ -62,7 +62,7 @@
 
   Live.prototype.first_frame = function (positions) {
     this.cloth = new drape.ClothScene({ rows: spec.rows, cols: spec.cols, pins: spec.pins, dummy: spec.dummy,
-                                        events: [], name: 'live' }, positions);
+                                        spacing: spec.spacing, events: [], name: 'live' }, positions);
     this.bounds = new THREE.Box3().setFromArray(positions);
     this.cloth_centre = this.bounds.getCenter(new THREE.Vector3());
     if (this.cloth.dummy_bounds) this.bounds.union(this.cloth.dummy_bounds);
@@ -110,6 +110,7 @@
     }));
     this.render();
     this.show_rate(f);
+    if (f.ended) this.show_end(f.ended);
     this.last = f;
     ++this.frames;
   };
@@ -128,6 +129,16 @@
     if (f.behind) behind.textContent = 'cannot keep up: ' + (f.wall - f.t).toFixed(2) + ' s behind the wall clock';
     document.getElementById('time-readout').textContent = 't = ' + f.t.toFixed(3) + ' s' +
       (spec.duration ? ' / ' + spec.duration.toFixed(3) + ' s' : '');
+  };
+
+  // The stream's last frame carries how the run ended ({status, t, reason}; docs/live.md).
+  Live.prototype.show_end = function (end) {
+    this.ended = end;
+    var box = document.getElementById('ended');
+    box.textContent = 'run ended at t = ' + end.t.toFixed(3) + ' s (' + end.status + (end.reason ? ': ' + end.reason : '') + ')';
+    box.className = end.status === 'ok' || end.status === 'stopped' ? 'done' : 'bad';
+    box.hidden = false;
+    document.getElementById('behind').hidden = true;
   };
 
   // A frame carries the newest events, from index f.events_from of f.event_count (the server
@@ -234,7 +245,8 @@
     var source = new EventSource('/events');
     source.onmessage = function (m) { self.receive(JSON.parse(m.data)); };
     source.onerror = function () {
-      document.getElementById('rtf').textContent = 'run ended (or the server is gone)';
+      // After the last frame the server closes the stream; without one it went away mid-run.
+      if (!self.ended) document.getElementById('rtf').textContent = 'connection lost: the server is gone';
       source.close();
     };
   };

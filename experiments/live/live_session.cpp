@@ -79,6 +79,9 @@ std::string page_scene_json(const ClothSystem& system, const Scene& scene, bool 
                          {"pins", pins},
                          {"dummy", dummy_page_json(d ? d->num_sections() : 0, d ? d->points() : 0,
                                                    positions)},
+                         // The markers' size: the grid's rest spacing, not the first frame's
+                         // particle distance (a stretched cloth, docs/live.md).
+                         {"spacing", system.cloth().params.spacing},
                          {"live_hands", live_hands},
                          {"duration", scene.duration}})
       .dump();
@@ -195,7 +198,7 @@ void LiveSession::apply_keys() {
   for (const std::string& k : keys) m_applied_keys.emplace_back(t, k);
 }
 
-void LiveSession::publish(double wall, bool behind) {
+void LiveSession::publish(double wall, bool behind, const nlohmann::json& ended) {
   const Simulation& simulation = m_run->simulation();
   const Eigen::VectorXd& y = simulation.state();
   // y = [x; v] (core/model/state.hpp): the first 3N values are the positions.
@@ -233,7 +236,8 @@ void LiveSession::publish(double wall, bool behind) {
                                 {"hands", hands},
                                 {"event_count", all.size()},
                                 {"events_from", first},
-                                {"events", events}};
+                                {"events", events},
+                                {"ended", ended}};
   auto text = std::make_shared<const std::string>(frame.dump());
   std::lock_guard<std::mutex> lock(m_mutex);
   for (auto& e : fresh) m_event_log.push_back(std::move(e));
@@ -290,6 +294,10 @@ std::string LiveSession::run() {
   if (!simulation.status().ended() || simulation.status().status == "ok")
     simulation.list_unplayed_keys();
   const std::string status = simulation.status().ended() ? simulation.status().status : "stopped";
+  // The stream's last frame says that the run ended, when and why: the page shows it (a page
+  // left open otherwise reads as a run still going; docs/live.md, The page).
+  publish(std::chrono::duration<double>(clock::now() - start).count(), false,
+          {{"status", status}, {"t", simulation.time()}, {"reason", simulation.status().reason}});
   write_outputs(status);
   return status;
 }

@@ -63,7 +63,8 @@ class LiveSession {
   bool finished() const { return m_finished; }
 
  private:
-  void publish(double wall, bool behind);
+  /// Publishes the current frame; `ended` ({status, t, reason}) on the last one, else null.
+  void publish(double wall, bool behind, const nlohmann::json& ended = nullptr);
   void apply_keys();
   void write_outputs(const std::string& status);
   bool write_recording(nlohmann::json& scene);

@@ -162,6 +162,9 @@ nlohmann::json page_data(const ViewerRun& run) {
       {"adaptive", s.value("adaptive", false)},
       {"duration", s.value("duration", 0.0)},
       {"sim_time", s.value("sim_time", 0.0)},
+      // Why a run diverged or failed: the page says so beside its last written frame.
+      {"reason",
+       s.contains("reason") && s["reason"].is_string() ? s["reason"] : nlohmann::json("")},
       {"description", s.contains("scene") ? s["scene"].value("description", std::string()) : ""},
       {"rows", run.rows},
       {"cols", run.cols},

@@ -43,6 +43,7 @@
       if (v.dummy_bounds) self.bounds.union(v.dummy_bounds);
     });
     this.labels = drape.build_labels(runs);
+    drape.build_notice(runs);
     drape.build_legend();
     this.plot = new drape.EnergyPlot(document.getElementById('energy'), runs, this.duration);
     this.slider = document.getElementById('slider');
@@ -52,7 +53,11 @@
     this.t = 0;
     // The first time every run has a frame: 0 with traces; a run with its final state only
     // (state.csv) opens at its end, where that state is, not at 0 beside the hands of t = 0.
-    this.start = Math.max.apply(null, runs.map(function (run) { return run.frames.times[0]; }));
+    // A run that diverged or failed opens at its last written frame, where it went wrong.
+    this.start = Math.max.apply(null, runs.map(function (run) {
+      var times = run.frames.times;
+      return run.status === 'ok' ? times[0] : times[times.length - 1];
+    }));
     this.layout();
     this.set_camera(options.view);
     this.set_time(options.times.length ? options.times[0] : this.start);
@@ -194,7 +199,13 @@
       renders.push({ t: self.t, nonbackground: count, per_view: per_view, checksum: hash.toString(16),
                      labels: self.labels.map(function (l) { return l.textContent; }) });
     });
+    var notice = document.getElementById('notice'), box = function (id) {
+      var r = document.getElementById(id).getBoundingClientRect();
+      return { top: r.top, bottom: r.bottom, left: r.left, right: r.right };
+    };
     return { ok: true, three: THREE.REVISION, width: w, height: h, renders: renders, ui: this.ui_check(),
+             notice: notice.hidden ? '' : notice.textContent, start: this.start,
+             layout: { canvas: box('gl'), labels: box('labels') },
              milliseconds: Math.round(performance.now()),
              runs: this.runs.map(function (r) { return { name: r.name, frames: r.frames.count }; }) };
   };

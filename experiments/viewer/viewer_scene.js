@@ -9,12 +9,13 @@ var drape = window.drape || (window.drape = {});
 drape.colours = {
   cloth_front: 0x3d7cc9, cloth_back: 0xa9c4e4, grid: 0x15325a, dress_form: 0xd9cbb8,
   object_particle: 0x7a6a58, pinned: 0xd62728, fixed: 0xff8c1a, held: 0xc21cc2,
-  candidate: 0xf5d000, right_hand: 0x2ca02c, left_hand: 0x17becf, attach_target: 0x6a00ff
+  candidate: 0xf5d000, right_hand: 0x2ca02c, left_hand: 0x17becf, hand_outline: 0x1f2933,
+  attach_target: 0x6a00ff
 };
 drape.legend = [
   ['cloth_front', 'cloth, front side', 'square'], ['cloth_back', 'cloth, back side', 'square'],
   ['dress_form', 'dress form', 'square'], ['pinned', 'pinned particle'],
-  ['fixed', 'fixed particle (held, attached, mapped)'], ['held', 'held by a hand'],
+  ['fixed', 'other fixed particle (attached, mapped edge)'], ['held', 'held by a hand'],
   ['candidate', 'hold candidate (nearest to a hand)'], ['right_hand', 'right hand'],
   ['left_hand', 'left hand'], ['attach_target', 'attach target (object particle)']
 ];
@@ -51,7 +52,9 @@ drape.ClothScene = function (spec, positions) {
   this.add_cloth();
   this.add_dress_form();
   this.markers = { pinned: [], fixed: [], held: [], candidate: [] };
-  this.marker_radius = Math.max(0.004, 0.35 * this.spacing());
+  // The scene's cloth.spacing when the page has it (the live page: its first frame may be
+  // mid-run, stretched); else the first frame's particle distance (a recorded run's t = 0).
+  this.marker_radius = Math.max(0.004, 0.35 * (spec.spacing || this.spacing()));
   this.hand_meshes = {};
   this.attach_targets = [];
   this.set_attach_targets(spec.events);
@@ -218,11 +221,20 @@ drape.ClothScene.prototype.place_markers = function (kind, particles) {
 drape.ClothScene.prototype.hand_mesh = function (name) {
   if (!this.hand_meshes[name]) {
     var colour = name === 'left' ? drape.colours.left_hand : drape.colours.right_hand;
-    // Translucent, so that the particle the hand holds shows inside it.
+    // Translucent, so that the particle the hand holds shows inside it; drawn last and over
+    // everything (no depth test), so that a fold of the cloth in front of the hand does not
+    // hide it: where the hand is is what the reader looks for (docs/viewer.md, Colours).
     var mesh = new THREE.Mesh(new THREE.SphereBufferGeometry(0.016, 20, 14), new THREE.MeshPhongMaterial(
-      { color: colour, shininess: 40, transparent: true, opacity: 0.55, depthWrite: false }));
-    mesh.renderOrder = 1;
+      { color: colour, shininess: 40, transparent: true, opacity: 0.55, depthWrite: false, depthTest: false }));
+    mesh.renderOrder = 10;
     this.scene.add(mesh);
+    // A dark outline ring facing the camera, also over everything: the hand reads on the
+    // cloth's blue where its translucent colour alone would blend in.
+    var outline = new THREE.Mesh(new THREE.RingBufferGeometry(0.016, 0.0195, 32), new THREE.MeshBasicMaterial(
+      { color: drape.colours.hand_outline, depthTest: false, depthWrite: false, transparent: true }));
+    outline.renderOrder = 11;
+    outline.onBeforeRender = function (renderer, scene, camera) { outline.quaternion.copy(camera.quaternion); };
+    mesh.add(outline);
     // A line from the hand to its candidate or held particle: which hand a marker belongs to.
     var link = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]),
                               new THREE.LineBasicMaterial({ color: colour, transparent: true, opacity: 0.8 }));

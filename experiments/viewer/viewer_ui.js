@@ -36,7 +36,7 @@ drape.build_labels = function (runs) {
     var meta = drape.element('div', 'meta', drape.run_title(run) + ', ' + run.rows + ' x ' + run.cols + ' cloth');
     label.appendChild(meta);
     if (run.status !== 'ok')
-      label.appendChild(drape.element('div', 'status-bad', run.status + ' at t = ' + run.sim_time.toFixed(3) + ' s'));
+      label.appendChild(drape.element('div', 'status-bad', drape.status_text(run)));
     var frame = drape.element('div', 'frame');
     label.appendChild(frame);
     if (run.description) label.title = run.description;
@@ -44,6 +44,24 @@ drape.build_labels = function (runs) {
     labels.push(frame);
   });
   return labels;
+};
+
+// A run that did not end ok: when, why (summary.json's reason) and the last frame it wrote,
+// the one the page shows from then on (docs/viewer.md, Diverged runs).
+drape.status_text = function (run) {
+  var times = run.frames.times;
+  return run.status + ' at t = ' + run.sim_time.toFixed(3) + ' s' + (run.reason ? ': ' + run.reason : '') +
+    '; last frame written at t = ' + times[times.length - 1].toFixed(3) + ' s';
+};
+
+// The banner over the page for runs that diverged or failed: the view of such a run holds
+// still at its last written frame, which must not read as a cloth at rest.
+drape.build_notice = function (runs) {
+  var box = document.getElementById('notice');
+  runs.forEach(function (run) {
+    if (run.status !== 'ok') box.appendChild(drape.element('div', '', run.name + ' ' + drape.status_text(run)));
+  });
+  box.hidden = !box.childNodes.length;
 };
 
 drape.frame_text = function (run, state) {

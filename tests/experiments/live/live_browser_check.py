@@ -6,7 +6,8 @@ and that the WebGL canvas is not blank, presses `m` in the page as a user would,
 event arrive, stops the run with SIGINT and checks that the summary has the event at a time
 and that `drapelab run OUT/scene.json` replays the same events. Then, with fig2_hold.json and
 --live-hands, presses `h` and moves the pointer over the view: the right hand appears where
-the pointer put it. With a step 100 times smaller the page says it cannot keep up. With DRAPE_LIVE_SCREENSHOT=FILE.png it then holds and lifts the cloth through
+the pointer put it. With a step 100 times smaller the page says it cannot keep up; after Ctrl-C the page says
+"run ended at t = ... s (stopped)". With DRAPE_LIVE_SCREENSHOT=FILE.png it then holds and lifts the cloth through
 POST /hand and saves the page seen from 3/4 (docs/images/live.png).
 Usage: live_browser_check.py DRAPELAB SOURCE_DIR WORK_DIR   (exit 77: no chromium, driver or
 selenium, skipped)
@@ -151,6 +152,26 @@ def behind_check(driver, drapelab, source, work):
         print(f"behind: '{text}', '{rtf}'")
 
 
+def end_check(driver, drapelab, source, work):
+    """Ctrl-C ends the session: the page says when and how (at summary.json's sim_time,
+    "stopped"), and its markers are sized from the scene's cloth.spacing (0.02 m: radius
+    0.35 x 0.02 = 7 mm; docs/live.md, The page)."""
+    with LiveRun(drapelab, source / "experiments/scenes/fig6_map.json", work / "end",
+                 "--set", "duration=600") as run:
+        driver.get(run.url + "/#test")
+        wait(driver, "return window.drape && drape.live && drape.live.frames >= 5", "5 frames")
+        radius = driver.execute_script("return drape.live.cloth.marker_radius")
+        assert abs(radius - 0.007) < 1e-12, radius
+        assert run.stop()[0] == 0
+        sim_time = json.loads((work / "end" / "summary.json").read_text())["sim_time"]
+        text = wait(driver, "var e = document.getElementById('ended'); "
+                    "return !e.hidden && e.textContent", "the page's 'run ended'")
+        assert text == f"run ended at t = {sim_time:.3f} s (stopped)", (text, sim_time)
+        rtf = driver.execute_script("return document.getElementById('rtf').textContent")
+        assert not rtf.startswith("connection lost"), rtf
+        print(f"end: '{text}', marker radius {radius} m")
+
+
 def main():
     drapelab, source, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
     driver = browser()
@@ -160,6 +181,7 @@ def main():
         key_check(driver, drapelab, source, work)
         pointer_check(driver, drapelab, source, work)
         behind_check(driver, drapelab, source, work)
+        end_check(driver, drapelab, source, work)
     finally:
         driver.quit()
 

@@ -57,5 +57,24 @@ TEST(PageData, FixedSetStoredWhereItChanges) {
   EXPECT_EQ(data["events"][0]["type"], "hold");
 }
 
+// A diverged run: the page gets its reason (summary.json) and its last finite frame, 0.05 s,
+// not the frame of 1e300 (infinite as float) written as it diverged.
+TEST(PageData, DivergedRunCarriesReasonAndLastFiniteFrame) {
+  const auto dir = testing::tiny_run("page_data_diverged");
+  testing::write_text(dir / "summary.json",
+                      R"({"status": "diverged", "reason": "runaway: 888 m/s", "integrator":
+                          "leapfrog", "dt": 0.001, "duration": 0.1, "sim_time": 0.07,
+                          "events": [], "scene": {"cloth": {"rows": 1, "cols": 2}}})");
+  std::ofstream(dir / "trace.csv", std::ios::app) << "0.07,0,1e300,1,0,0,0,0,1,-1,0\n"
+                                                     "0.07,1,0.02,1,0,0,0,0,0,-1,0\n";
+  const nlohmann::json data = page_data(read_viewer_run(dir));
+  EXPECT_EQ(data["status"], "diverged");
+  EXPECT_EQ(data["reason"], "runaway: 888 m/s");
+  EXPECT_DOUBLE_EQ(data["sim_time"].get<double>(), 0.07);
+  EXPECT_EQ(data["frames"]["count"], 2);
+  EXPECT_DOUBLE_EQ(data["frames"]["times"][1].get<double>(), 0.05);
+  EXPECT_EQ(page_data(read_viewer_run(testing::tiny_run("page_data_ok")))["reason"], "");
+}
+
 }  // namespace
 }  // namespace drape

@@ -5,7 +5,9 @@ Runs a tiny hold scene twice with a trace (leap-frog and implicit Euler), writes
 with `drapelab view`, opens it in headless chromium with the page's test hook
 (#test&t=A&t=B), and checks what the page wrote into its DOM: no errors, a picture in each
 run's viewport, different pictures at the two times, that the slider, play and a camera
-button act, and that a run with its final state only (no trace) opens at its end. Also checks that `drapelab view` refuses a folder that is not a run, and a
+button act, that the run labels lie under the canvas, that a run with its final state only (no
+trace) opens at its end, and that a diverged run is named in the banner with its reason and
+opens at its last frame. Also checks that `drapelab view` refuses a folder that is not a run, and a
 malformed trace, with exit status 2.
 
 Usage: viewer_browser_check.py DRAPELAB SOURCE_DIR WORK_DIR   (exit 77: no chromium, skipped)
@@ -48,6 +50,40 @@ def find_chromium():
     return None
 
 
+def page_result(chromium, url, work, name):
+    """The page's #test-result (docs/viewer.md, Browser check), failing on the errors it logged."""
+    dom = run([chromium] + CHROMIUM_FLAGS + ["--dump-dom", url]).stdout
+    (work / f"{name}.dom.html").write_text(dom)
+    found = re.search(r'<pre id="test-result"[^>]*>(.*?)</pre>', dom, re.S)
+    errors = re.search(r'<div id="errors"[^>]*>(.*?)</div>', dom, re.S)
+    if errors and errors.group(1).strip():
+        fail(f"{name}: the page reported errors:\n" + html.unescape(errors.group(1)))
+    if not found or not found.group(1).strip():
+        fail(f"{name}: the page wrote no test result (see {work / name}.dom.html)")
+    result = json.loads(html.unescape(found.group(1)))
+    if not result.get("ok") or result.get("errors"):
+        fail(f"{name}: the page's test hook failed: " + json.dumps(result)[:500])
+    return result
+
+
+def check_diverged(drapelab, chromium, scene, work):
+    """Leap-frog at 2 ms on fig2_hold diverges at 0.008 s, before its first trace interval: the
+    page names it in the banner with summary.json's reason and opens at its last frame, t = 0
+    (it showed that flat cloth with no word in the banner; docs/viewer.md, Diverged runs)."""
+    run([drapelab, "run", scene, "--out", work / "leapfrog_2ms", "--set", "duration=0.8",
+         "--set", "output.trace_interval=0.0333333", "--set", "integrator.name=leapfrog",
+         "--set", "integrator.dt=0.002"], expect=3)
+    summary = json.loads((work / "leapfrog_2ms" / "summary.json").read_text())
+    page = work / "diverged.html"
+    run([drapelab, "view", work / "leapfrog_2ms", "--out", page])
+    result = page_result(chromium, page.resolve().as_uri() + "#test", work, "diverged")
+    expected = (f"leapfrog_2ms diverged at t = {summary['sim_time']:.3f} s: {summary['reason']}; "
+                "last frame written at t = 0.000 s")
+    if result["notice"] != expected or result["start"] != 0:
+        fail(f"diverged run: banner {result['notice']!r}, opened at {result['start']}; "
+             f"expected {expected!r} at 0")
+
+
 def main():
     drapelab, source, work = sys.argv[1], Path(sys.argv[2]), Path(sys.argv[3])
     chromium = find_chromium()
@@ -80,18 +116,13 @@ def main():
     page = work / "page.html"
     run([drapelab, "view", work / "leapfrog", implicit, "--out", page])
     url = page.resolve().as_uri() + "#test&" + "&".join(f"t={t}" for t in TIMES)
-    dom = run([chromium] + CHROMIUM_FLAGS + ["--dump-dom", url]).stdout
-    (work / "dom.html").write_text(dom)
-    found = re.search(r'<pre id="test-result"[^>]*>(.*?)</pre>', dom, re.S)
-    errors = re.search(r'<div id="errors"[^>]*>(.*?)</div>', dom, re.S)
-    if errors and errors.group(1).strip():
-        fail("the page reported errors:\n" + html.unescape(errors.group(1)))
-    if not found or not found.group(1).strip():
-        fail(f"the page wrote no test result (see {work / 'dom.html'})")
-    result = json.loads(html.unescape(found.group(1)))
+    result = page_result(chromium, url, work, "page")
     print(json.dumps(result))
-    if not result.get("ok") or result.get("errors"):
-        fail("the page's test hook failed: " + json.dumps(result))
+    # The labels lie under the canvas, not over the cloth, and no banner for runs that are ok.
+    canvas, labels = result["layout"]["canvas"], result["layout"]["labels"]
+    if labels["top"] < canvas["bottom"] - 0.5 or result["notice"]:
+        fail(f"labels over the canvas or a banner for ok runs: {json.dumps(result['layout'])}, "
+             f"{result['notice']!r}")
     pixels = result["width"] * result["height"]
     renders = result["renders"]
     for r in renders:
@@ -120,12 +151,11 @@ def main():
          "--set", "output.trace_interval=0"])
     final_page = work / "final_only.html"
     run([drapelab, "view", work / "final_only", "--out", final_page])
-    dom = run([chromium] + CHROMIUM_FLAGS + ["--dump-dom", final_page.resolve().as_uri() + "#test"]).stdout
-    found = re.search(r'<pre id="test-result"[^>]*>(.*?)</pre>', dom, re.S)
-    final = json.loads(html.unescape(found.group(1))) if found else {}
+    final = page_result(chromium, final_page.resolve().as_uri() + "#test", work, "final_only")
     opened_at = [r["t"] for r in final.get("renders", [])]
-    if not final.get("ok") or opened_at != [0.8]:
+    if opened_at != [0.8]:
         fail("a run with its final state only does not open at its end (0.8 s): " + json.dumps(final)[:500])
+    check_diverged(drapelab, chromium, scene, work)
     print(f"OK: {len(renders)} pictures, {page.stat().st_size / 1e6:.2f} MB page; "
           f"a final state only opens at t = {opened_at[0]}")
     return 0
