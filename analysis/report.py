@@ -28,7 +28,8 @@ except ImportError:  # drapelab report checks for matplotlib and numpy only
     sys.exit("report.py needs pandas (Debian: apt install python3-pandas; install_dependencies.sh installs it)")
 
 from drapeanalysis import metrics, plots, report_options, runfiles, table_columns, viewer_pages  # noqa: E402
-from drapeanalysis.report_summary import SUMMARY_NOTE, method_name, summary_tables, unfinished_banner  # noqa: E402
+from drapeanalysis.report_summary import (SUMMARY_NOTE, attach_note, method_name, summary_tables,  # noqa: E402
+                                          unfinished_banner)
 from drapeanalysis.fileio import OutputError, atomic_output, check_writable_folder, output_folder  # noqa: E402
 from drapeanalysis.figure_catalogue import CAPTIONS, FIGURE_METRIC  # noqa: E402
 
@@ -135,10 +136,19 @@ def viewer_html(rows, parameters, pages):
     return "".join(parts)
 
 
+# What the runs table's cells mean (docs/analysis.md, "The report").
+RUNS_NOTE = ("<p>Lengths in mm (metrics.csv keeps them in m), times in s. An empty cell: the metric "
+             "does not apply to the run, or the run did not finish (its status, the simulated time it "
+             "reached and why are beside it; a run that stopped has no energy drift either, as a drift "
+             "over part of a run does not compare with a whole run's). \"k not fixed\": k attaches of "
+             "the run were never fixed, so it has no attach error for them.</p>")
+
+
 def html_table(rows, parameters, pages=None):
     """The results as an HTML table: id, its viewer page (or why none), parameters, the main
     metrics present."""
-    present = [c for c in table_columns.TABLE_COLUMNS if any(clean(r.get(c)) not in (None, "") for r in rows)]
+    present = [c for c in table_columns.TABLE_COLUMNS
+               if any(clean(r.get(c)) not in (None, "") or attach_note(r, c) for r in rows)]
     columns = ["id"] + list(parameters) + present
     head = "".join(f"<th>{html.escape(table_columns.heading(c))}</th>"
                    for c in columns[:1] + ["3-D"] * (pages is not None) + columns[1:])
@@ -147,7 +157,11 @@ def html_table(rows, parameters, pages=None):
         cells = []
         for c in columns:
             value = clean(row.get(c))
-            text = "" if value is None else (f"{value:.4g}" if isinstance(value, float) else str(cell(value)))
+            text = ("" if value is None else f"{table_columns.shown_value(c, value):.4g}"
+                    if isinstance(value, float) else str(cell(value)))
+            # An empty attach error is a failed attach when one was never fixed, else none applies.
+            note = attach_note(row, c)
+            text = f"{text} ({note})" if text and note else text or note
             cells.append(f"<td>{html.escape(text)}</td>")
         if pages is not None:  # the page beside the id
             links, notes, _ = pages
@@ -223,7 +237,7 @@ def write_html(out_dir, results, rows, figures, videos=(), pages=None):
         parts.append(f"<figure><video controls src='{name}' width='640'></video>"
                      f"<figcaption>{html.escape(name)}</figcaption></figure>")
     parts.append("<h2>Runs</h2><details><summary>Every run with its parameters, viewer page and main "
-                 f"metrics ({len(rows)} rows)</summary>" + html_table(rows, results["parameters"], pages)
+                 f"metrics ({len(rows)} rows)</summary>" + RUNS_NOTE + html_table(rows, results["parameters"], pages)
                  + "</details>")
     parts.append("<p>Every parameter and metric: <a href='../metrics.csv'>metrics.csv</a>, "
                  "<a href='../metrics.json'>metrics.json</a>. Metrics: docs/analysis.md.</p>")

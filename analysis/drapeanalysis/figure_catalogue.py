@@ -2,7 +2,11 @@
 (docs/experiments.md) asks for it."""
 
 CAPTIONS = {
-    "energy_vs_time": "Relative energy error against time, one panel per integrator.",
+    "energy_vs_time": "Relative energy change |E(t) - E(0)| / |E(0)| from the start against time, one "
+                      "panel per integrator (colour: scene, line style: step). It includes the work of "
+                      "the manipulations and the damping, so it is not an error: driven, damped scenes "
+                      "change their energy. A run that did not finish ends in an x, its legend entry "
+                      "saying when it stopped.",
     "work_precision": "RMS error against the reference (the restart error at the first horizon after the events, the reference "
                       "restarted from the run's state, where the runs measured the restart error; else "
                       "of the final positions), against right-hand-side evaluations and wall time; "
@@ -11,10 +15,12 @@ CAPTIONS = {
                                 "each run's state after each of its events, RMS distance between "
                                 "them a horizon later (mean over the runs of each run's mean over "
                                 "its events; bars: 95 % interval over the runs).",
-    "energy_by_scene": "Total energy E(t) - E(0) of every method (reference run dashed black), one "
-                       "panel per scene; dotted lines: the manipulations of one run (the reference's, else the first "
-                       "run's: other runs reach them at other times, or not at all). Driven, damped scenes do not "
-                       "conserve energy: the methods are compared with each other.",
+    "energy_by_scene": "Total energy E(t) - E(0), one block of panels per scene and one panel per "
+                       "integrator (its steps by line style), the reference run dashed black in each; "
+                       "dotted lines: the manipulations of one run (the reference's, else the first "
+                       "run's: other runs reach them at other times, or not at all), labelled in the "
+                       "block's first panel. Driven, damped scenes do not conserve energy: the methods "
+                       "are compared with each other. A run that did not finish ends in an x.",
     "attach_error_vs_iterations": "Attach error |x - (p_o + delta n_o)| against "
                                   "manipulation.attach_iterations (paper Figure 5); \"n of N\" beside "
                                   "a point from only n of its N repeats.",
@@ -26,10 +32,13 @@ CAPTIONS = {
                        "model), one line per integrator and the other swept values; dashed black: "
                        "the reference run. A point is the mean of a method's runs at that step with "
                        "a value (bars: 95 % interval over repeats); \"n of N\" beside it when only n of "
-                       "its N runs have one (the others diverged).",
+                       "its N runs have one (the others diverged); an x on a panel's floor, "
+                       "\"diverged (N of N)\": a step where none of a method's runs has a value. "
+                       "Lengths in mm, as in the tables.",
     "vibration_events_vs_dt": "The same, largest over the windows after each manipulation.",
     "contact_switch_vs_dt": "Changes of a particle's nearest object particle in contact per free "
-                            "particle and second, last 0.5 s, against the step size.",
+                            "particle and second, last 0.5 s, against the step size (a linear axis "
+                            "when a value is 0).",
     "stable_dt": "Largest stable step found by bisection.",
 }
 

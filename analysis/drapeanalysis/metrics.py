@@ -103,6 +103,18 @@ def _event_times(summary):
     return sorted({float(e["t"]) for e in summary.get("events", []) if e.get("type") != "ignored"})
 
 
+def attach_unfixed(summary):
+    """How many of a run's attaches were never fixed: `attach` events without their
+    `attach_fixed` (docs/outputs.md, summary.json `events`). An attached particle is fixed
+    `attach_iterations` steps after its attach (docs/model.md section 7), so an attach late in
+    the run, or in a run that stopped, has no attach error: a failed attach, where a run
+    without any attach has none because none applies (docs/analysis.md, Attach error)."""
+    kinds = [e.get("type") for e in summary.get("events", [])]
+    if "attach" not in kinds:  # nothing to fix: the metric does not apply
+        return {}
+    return {"attach_unfixed_count": kinds.count("attach") - kinds.count("attach_fixed")}
+
+
 def vibration(run, summary, window=VIBRATION_WINDOW):
     """Vibration after every event (to the next event or `window` seconds) and over the last
     `window` seconds of the run, above the cutoff derived from the run's scene. The windows after
@@ -351,6 +363,7 @@ def run_metrics(directory, row, rows_by_id):
             # diverged before its first energy row would read 0 (docs/analysis.md, Energy drift).
             drift = dict.fromkeys(list(drift) + list(SUMMARY_DRIFT), math.nan)
         out.update(drift)
+    out.update(attach_unfixed(summary))
     vib, windows = vibration(run, summary)
     out.update(vib)
     out.update(mapping_error(run, summary))

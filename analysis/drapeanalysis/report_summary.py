@@ -36,10 +36,22 @@ SUMMARY_METRICS = (
     ("short_error_events_inherited", "RMS error against the reference at the events", "mm", 1e3),
     ("short_error_events", "RMS error against the reference 1/30 s after the events", "mm", 1e3),
     ("error_rms", "RMS error of the final positions against the reference", "mm", 1e3),
-    ("attach_error_mean", "Attach error (distance from p_o + delta n_o)", "cm", 1e2),
+    ("attach_error_mean", "Attach error (distance from p_o + delta n_o)", "mm", 1e3),
     ("energy_drift_max_rel", "Largest relative energy change from the start (manipulations and damping included)", "1", 1.0),
     ("wall_seconds", "Wall time", "s", 1.0),
 )
+
+
+# The metrics an attach's fixing gives (docs/analysis.md, Attach error): without a value, a run
+# whose attach was never fixed failed it, where a run without an attach has nothing to measure.
+ATTACH_FIXED = ("attach_error_mean", "vibration_rms_after_attach_fixed")
+
+
+def attach_note(row, metric):
+    """"k not fixed" for a metric of ATTACH_FIXED of a run with k attaches never fixed
+    (metrics.attach_unfixed), else empty."""
+    count = plots.number(row.get("attach_unfixed_count"))
+    return f"{int(count)} not fixed" if metric in ATTACH_FIXED and count > 0 else ""
 
 
 def method_name(row, parameters):
@@ -85,19 +97,25 @@ def summary_cell(r, metric, scale):
     """One cell of a summary table: the mean in the table's unit, +- the Student-t 95 %
     half-width over the runs with a value (marked with a dagger when the interval reaches below
     0: every summary metric is a magnitude), and, for a method run more than once, their number
-    n, "of N" when some of its N runs have none, and how many of them did not finish; without a
-    value, a dash or the runs that did not finish."""
+    n, "of N" when some of its N runs have none, how many of them did not finish and, for an
+    attach's metric, how many finished runs never fixed an attach; without a value, the runs
+    that did not finish, those whose attach was not fixed, or a dash: the metric does not apply."""
     count, runs, stopped = r[f"{metric}_n"], r["n"], r["unfinished"]
     word = stop_word(r["statuses"])
+    unfixed = r["unfixed"] if metric in ATTACH_FIXED else 0
     if not count:
-        return f"{word} ({stopped} of {runs})" if stopped else "&ndash;"
+        if stopped:
+            return f"{word} ({stopped} of {runs})"
+        return f"not fixed ({unfixed} of {runs})" if unfixed else "&ndash;"
     mean, half = r[f"{metric}_mean"] * scale, r[f"{metric}_ci95"] * scale
     value = f"{mean:.3g}"
     if count > 1:
         value += f" &plusmn; {half:.2g}" + ("&dagger;" if mean - half < 0 else "")
     if runs > 1:
         value += f" (n={count}" + (f" of {runs}" if count < runs else "")
-        value += (f"; {stopped} {word})" if stopped else ")")
+        value += (f"; {stopped} {word}" if stopped else "") + (f"; {unfixed} not fixed" if unfixed else "") + ")"
+    elif unfixed:
+        value += " (an attach not fixed)"
     return value
 
 
@@ -111,6 +129,7 @@ def summary_tables(rows, parameters):
     # drift reads 0 when it diverged before the first), and its other metrics measure nothing.
     frame = pd.DataFrame([{"method": method_name(r, parameters), "scene": plots.scene_name(r),
                            "status": r.get("status"),
+                           "unfixed": r.get("status") == FINISHED and bool(attach_note(r, ATTACH_FIXED[0])),
                            **{m: plots.number(r.get(m)) if r.get("status") == FINISHED else math.nan
                               for m, *_ in SUMMARY_METRICS}} for r in rows])
     if frame.empty:
@@ -120,9 +139,11 @@ def summary_tables(rows, parameters):
     statuses = frame[frame["status"] != FINISHED].groupby(["method", "scene"])["status"].agg(list)
     summary["statuses"] = [statuses.get((m, s), []) for m, s in zip(summary["method"], summary["scene"])]
     summary["unfinished"] = summary["statuses"].map(len)
+    unfixed = frame.groupby(["method", "scene"])["unfixed"].sum()
+    summary["unfixed"] = [int(unfixed[(m, s)]) for m, s in zip(summary["method"], summary["scene"])]
     parts = []
     for metric, title, unit, scale in SUMMARY_METRICS:
-        if not summary[f"{metric}_n"].any():
+        if not summary[f"{metric}_n"].any() and not (metric in ATTACH_FIXED and summary["unfixed"].any()):
             continue
         cells = summary.apply(lambda r: summary_cell(r, metric, scale), axis=1)
         table = summary.assign(cell=cells).pivot(index="method", columns="scene", values="cell")
@@ -142,5 +163,7 @@ SUMMARY_NOTE = (
     "deviation of the n values; none for n = 1). &dagger;: the interval reaches below 0, which a "
     "magnitude cannot: its n values are too few or too spread for the mean to be well determined "
     "(a magnitude's spread is skewed, so read the mean and n, not the interval's lower end). "
-    "\"diverged (k of N)\": none of the method's runs finished; a dash: the metric does not apply, "
-    "or its event did not happen (such as an attach not fixed by the run's end).</p>")
+    "\"diverged (k of N)\": none of the method's runs finished; \"not fixed (k of N)\": the runs finished "
+    "but an attach of theirs was never fixed (the run ended before the attached particle was), "
+    "so they have no attach error; a dash: the metric "
+    "does not apply (no attach in the scene, say) or its event did not happen.</p>")

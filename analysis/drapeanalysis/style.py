@@ -1,6 +1,7 @@
 """One style for every figure of the report (docs/analysis.md, Figures): text of at least 8 pt,
 one colour per integrator, one line style and marker per step size, legends beside the axes,
 event labels staggered, empty panels saying why, and each figure as PNG (200 dpi), SVG and PDF."""
+import math
 import warnings
 
 import matplotlib
@@ -8,6 +9,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
+import matplotlib.transforms  # noqa: E402
 
 from .fileio import atomic_output  # noqa: E402
 
@@ -125,11 +127,12 @@ def _overlap(a, b):
     return max(0.0, min(a[2], b[2]) - max(a[0], b[0])) * max(0.0, min(a[3], b[3]) - max(a[1], b[1]))
 
 
-def place_labels(ax, points, texts, color, half=None):
+def place_labels(ax, points, texts, color, half=None, joined=False):
     """Annotates data points with short texts, each in the spot around its point (right, left,
     above, below, the corners) whose box overlaps least the labels, points and error bars already
     placed, so neighbouring labels do not overlap and no label covers a bar (`half`: the points'
-    95 % half-widths, drawn by log_errorbar, whose bar stops at a tenth of y when it reaches 0).
+    95 % half-widths, drawn by log_errorbar, whose bar stops at a tenth of y when it reaches 0;
+    `joined`: the points are joined by a line in their order, which a label must not cover either).
     Call after the axes' scales and limits are final."""
     ax.autoscale_view()
     px_per_pt = ax.figure.dpi / 72
@@ -143,6 +146,11 @@ def place_labels(ax, points, texts, color, half=None):
         if h == h and h > 0:  # nan: one run, no bar
             (left, low), (_, high) = ax.transData.transform([(x, max(y - h, 0.1 * y)), (x, y + h)])
             boxes.append((left - gap, low, left + gap, high))
+    if joined:  # the line between neighbours, as boxes a gap wide every gap along it
+        for (x0, y0), (x1, y1) in zip(screen, screen[1:]):
+            n = max(1, int(math.hypot(x1 - x0, y1 - y0) / gap))
+            along = [(x0 + (x1 - x0) * k / n, y0 + (y1 - y0) * k / n) for k in range(n + 1)]
+            boxes += [(x - gap, y - gap, x + gap, y + gap) for x, y in along]
     frame = ax.get_window_extent().extents  # a label outside the axes would cover the ticks
 
     def cost(box):
@@ -160,6 +168,62 @@ def place_labels(ax, points, texts, color, half=None):
                     fontsize=MIN_FONT, color=color, va="bottom", ha="left")
 
 
+def mark_partial(ax, points, color="k"):
+    """Writes "n of N" beside each point of figure_data.with_intervals that stands for fewer runs
+    than its ensemble had (the others diverged or wrote no value), so that a point from one of
+    two runs does not read as the ensemble's."""
+    for x, y, _, n, runs in points:
+        if n < runs:
+            ax.annotate(f"{n} of {runs}", (x, y), textcoords="offset points", xytext=(4, 4),
+                        fontsize=MIN_FONT, color=color)
+
+
+# A step with no value at all (every run diverged): an x on the axis' floor, not a missing step.
+FAILED_MARK = "x"
+
+
+def mark_failed(ax, failures, color, index=0, count=1):
+    """An x at the bottom of the axes at each (x, text) of `failures` ("diverged (2 of 2)"),
+    its text above it, series `index` of `count` dodged as log_errorbar does and its text a line
+    higher, so that a step where a method failed stays on the axis and says so."""
+    if not failures:
+        return
+    shift = DODGE ** (index - (count - 1) / 2)
+    floor = matplotlib.transforms.blended_transform_factory(ax.transData, ax.transAxes)
+    xs = [x * shift for x, _ in failures]
+    ax.plot(xs, [0.03] * len(xs), ls="none", marker=FAILED_MARK, ms=7, mew=1.5, color=color,
+            transform=floor, clip_on=False)
+    for x, text in zip(xs, (text for _, text in failures)):
+        ax.text(x, 0.07 + 0.07 * index, text, transform=floor, fontsize=MIN_FONT, color=color,
+                ha="center", va="bottom")
+
+
+def label_log_ticks(ax):
+    """Gives each log axis of `ax` at least two labelled ticks: a range within a decade or two
+    showed one label (second browser audit, docs/known_issues.md), so the ticks go to 1, 2 and 5
+    times the decades, or to every integer multiple, all labelled (matplotlib itself falls back to
+    evenly spaced ticks when even those leave one inside)."""
+    for axis, limits in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
+        # An axis with no positive limit (nothing drawn on it) has no decades to label.
+        if (axis.get_scale() != "log" or min(limits) <= 0
+                or len(labelled_ticks(axis, *sorted(limits))) >= 2):
+            continue
+        axis.set_major_formatter(matplotlib.ticker.LogFormatterSciNotation(
+            labelOnlyBase=False, minor_thresholds=(math.inf, math.inf)))
+        for subs in ((1.0, 2.0, 5.0), tuple(range(1, 10))):
+            axis.set_major_locator(matplotlib.ticker.LogLocator(subs=subs))
+            if len(labelled_ticks(axis, *sorted(limits))) >= 2:
+                break
+
+
+def labelled_ticks(axis, low, high):
+    """The major ticks of `axis` from low to high that its formatter gives a label."""
+    ticks = [t for t in axis.get_major_locator()() if low <= t <= high]
+    formatter = axis.get_major_formatter()
+    formatter.set_locs(ticks)
+    return [t for t in ticks if formatter(t)]
+
+
 def empty_note(ax, why):
     """An empty panel that says why it is empty."""
     ax.text(0.5, 0.5, why, transform=ax.transAxes, ha="center", va="center", fontsize=MIN_FONT,
@@ -172,9 +236,12 @@ def empty_note(ax, why):
 def save(fig, out_dir, stem):
     """Writes the figure as PNG (200 dpi), SVG and PDF, each whole or not at all
     (fileio.atomic_output), and closes it; returns the stem."""
+    for ax in fig.axes:
+        label_log_ticks(ax)
     with warnings.catch_warnings():  # figures with outside legends cannot always be tightened
         warnings.simplefilter("ignore")
-        fig.tight_layout()
+        if fig.get_layout_engine() is None:  # a constrained figure (subfigures) lays itself out
+            fig.tight_layout()
     try:
         for fmt in FORMATS:
             with atomic_output(out_dir / f"{stem}.{fmt}") as temporary:

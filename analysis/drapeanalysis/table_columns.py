@@ -1,5 +1,6 @@
-"""The report's runs table: its metric columns and their units (docs/analysis.md defines each
-metric; every length is in m, every time in s)."""
+"""The report's runs table: its metric columns and the units it shows them in (docs/analysis.md
+defines each metric; metrics.csv keeps every length in m, every time in s; the tables show
+lengths in mm, as the summary and the figures do: cloth errors and vibrations are millimetres)."""
 
 # Columns of the report's table besides the parameters; every column is in metrics.csv.
 TABLE_COLUMNS = (
@@ -20,31 +21,40 @@ UNITS = {
     "energy_drift_max_rel": "of E(0)",
     "energy_drift_final_rel": "of E(0)",
     "energy_drift_exponent": "1",
-    "attach_error_mean": "m",
-    "vibration_rms_final": "m",
-    "vibration_rms_events": "m",
-    "vibration_rms_holding": "m",
-    "hand_jitter_rms_holding": "m",
-    "hand_jitter_rms_final": "m",
+    "attach_error_mean": "mm",
+    "vibration_rms_final": "mm",
+    "vibration_rms_events": "mm",
+    "vibration_rms_holding": "mm",
+    "hand_jitter_rms_holding": "mm",
+    "hand_jitter_rms_final": "mm",
     "settle_time": "s",
     "contact_switch_rate_final": "1/s",
-    "mapping_gap_mean_mapped": "m",
-    "mapping_gap_mean_final": "m",
-    "mapping_gap_max_final": "m",
+    "mapping_gap_mean_mapped": "mm",
+    "mapping_gap_mean_final": "mm",
+    "mapping_gap_max_final": "mm",
     "spring_strain_rms_mapped": "1",
     "spring_strain_rms_final": "1",
     "spring_strain_max_final": "1",
-    "restart_error_start": "m",
-    "restart_error_events": "m",
-    "short_error_start": "m",
-    "short_error_events": "m",
-    "error_rms": "m",
-    "error_max": "m",
-    "slow_motion_rms_final": "m",
+    "restart_error_start": "mm",
+    "restart_error_events": "mm",
+    "short_error_start": "mm",
+    "short_error_events": "mm",
+    "error_rms": "mm",
+    "error_max": "mm",
+    "slow_motion_rms_final": "mm",
     "vibration_cutoff_hz": "Hz",
     "integrator.dt": "s",
     "duration": "s",
 }
+
+
+# A shown unit -> the factor from the unit metrics.csv keeps (m for every length).
+SCALES = {"mm": 1e3}
+
+
+def shown_value(column, value):
+    """A number of metrics.csv's `column` in the unit its heading names."""
+    return value * SCALES.get(UNITS.get(column), 1.0)
 
 
 def heading(column):

@@ -73,6 +73,13 @@ class EnergyDriftTest(runfolder.RunFolderTest):
         self.assertEqual(windows, [])
         self.assertNotIn("vibration_rms_final", out, "no trace.csv, no vibration")
 
+    def test_attaches_never_fixed_are_counted(self):
+        attach, fixed = {"type": "attach", "t": 0.2}, {"type": "attach_fixed", "t": 0.25}
+        self.assertEqual(metrics.attach_unfixed({"events": [attach, fixed, dict(attach, t=0.9)]}),
+                         {"attach_unfixed_count": 1})
+        self.assertEqual(metrics.attach_unfixed({"events": [attach, fixed]}), {"attach_unfixed_count": 0})
+        self.assertEqual(metrics.attach_unfixed({"events": [{"type": "hold", "t": 0.1}]}), {})
+
     def test_a_diverged_run_has_no_drift(self):
         # Diverged at the first step: its one energy row reads a drift of 0, and drapelab's own
         # summary columns too; all of them are emptied, as the run is not comparable.

@@ -255,11 +255,11 @@ class ReportProvenanceAndViewerTest(unittest.TestCase):
         self.assertIn("<th>CPU</th><td>not recorded</td>", report.provenance_html([{"id": "x"}]))
 
     def test_summary_tables_group_the_repeats_of_an_ensemble(self):
-        # Three repeats (seeds 1-3) of one method: one row, mean 2 cm +- t(0.975, 2) 1 / sqrt 3.
+        # Three repeats (seeds 1-3) of one method: one row, mean 20 mm +- t(0.975, 2) 10 / sqrt 3.
         rows = [{"id": f"r{k}", "scene": "scenes/s.json", "integrator": "leapfrog", "integrator.dt": 0.001,
                  "perturbation.seed": k, "attach_error_mean": 0.01 * k, "status": "ok"} for k in (1, 2, 3)]
         page = report_summary.summary_tables(rows, ["integrator.dt", "perturbation.seed"])
-        self.assertIn("2 &plusmn; 2.5&dagger; (n=3)", page)  # 2 - 2.5 < 0: marked
+        self.assertIn("20 &plusmn; 25&dagger; (n=3)", page)  # 2 - 2.5 < 0: marked
         self.assertNotIn("seed=", page)
 
     def test_summary_tables_give_diverged_runs_a_dash_and_count_the_runs_with_a_value(self):
@@ -288,6 +288,22 @@ class ReportProvenanceAndViewerTest(unittest.TestCase):
                 for k, (status, w) in enumerate((("ok", 1.0), ("ok", 2.0), ("failed", 9.0)))]
         page = report_summary.summary_tables(rows, ["perturbation.seed"])
         self.assertIn("<td>1.5 &plusmn; 6.4&dagger; (n=2 of 3; 1 did not finish)</td>", page)
+
+    def test_an_attach_never_fixed_is_not_a_dash(self):
+        # Two finished repeats: one fixed its attach (4 mm), one ended before fixing it; a third
+        # method never fixed one at all. A dash stays for "does not apply" only.
+        def run(k, method, unfixed, error):
+            return {"id": f"{method}{k}", "scene": "scenes/s.json", "integrator": method, "dt": 0.001,
+                    "perturbation.seed": k, "status": "ok", "attach_unfixed_count": unfixed,
+                    "attach_error_mean": error}
+        rows = [run(1, "leapfrog", 0, 0.004), run(2, "leapfrog", 1, math.nan),
+                run(1, "implicit-euler", 1, math.nan), run(2, "implicit-euler", 1, math.nan)]
+        page = report_summary.summary_tables(rows, ["perturbation.seed"])
+        self.assertIn("<td>4 (n=1 of 2; 1 not fixed)</td>", page)
+        self.assertIn("<td>not fixed (2 of 2)</td>", page)
+        table = report.html_table(rows, ["perturbation.seed"])
+        self.assertIn("<td>4</td>", table)  # 0.004 m in the table's mm
+        self.assertIn("<td>1 not fixed</td>", table)
 
     def test_the_banner_names_every_run_that_did_not_finish(self):
         rows = [{"id": "a", "scene": "scenes/s.json", "integrator": "leapfrog", "dt": 0.002,
@@ -326,7 +342,7 @@ class ReportProvenanceAndViewerTest(unittest.TestCase):
             self.assertEqual(plots.vibration_vs_dt(Path(tmp), rows, ["integrator.dt", "perturbation.seed"]),
                              "vibration_vs_dt")
             plt.close("all")
-        self.assertEqual(texts, ["1 of 2"])
+        self.assertEqual(texts, ["1 of 2", "no value (2 of 2)"])  # 4 ms: no value in either run
 
     def test_a_snapshot_of_an_event_is_the_runs_own_and_none_for_a_run_without_it(self):
         # The instants come from the first run's events; a run that never held has no "hold"

@@ -102,3 +102,30 @@ class PlaceLabelsTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class LabelLogTicksTest(unittest.TestCase):
+    def labelled(self, low, high):
+        """The labelled major ticks inside a log y axis from low to high, after label_log_ticks."""
+        fig, ax = plt.subplots()
+        ax.set_yscale("log")
+        ax.set_ylim(low, high)
+        style.label_log_ticks(ax)
+        fig.canvas.draw()
+        out = [(tick.get_loc(), tick.label1.get_text()) for tick in ax.yaxis.get_major_ticks()
+               if low <= tick.get_loc() <= high and tick.label1.get_text()]
+        plt.close(fig)
+        return out
+
+    def test_a_range_with_one_power_of_ten_gets_1_2_5_ticks(self):
+        # 0.15 to 9: only 1 was labelled; now 0.2, 0.5, 1, 2, 5.
+        np.testing.assert_allclose([loc for loc, _ in self.labelled(0.15, 9.0)], [0.2, 0.5, 1, 2, 5])
+
+    def test_a_range_within_a_factor_of_two_gets_evenly_spaced_labelled_ticks(self):
+        # 3 to 5.5: no power of ten inside, one 1-2-5 tick (5): matplotlib's even spacing.
+        ticks = self.labelled(3.0, 5.5)
+        np.testing.assert_allclose([loc for loc, _ in ticks], [3, 3.5, 4, 4.5, 5, 5.5])
+        self.assertIn("3.5", ticks[1][1])
+
+    def test_several_decades_keep_their_decade_ticks(self):
+        np.testing.assert_allclose([loc for loc, _ in self.labelled(1e-3, 1.0)], [1e-3, 1e-2, 1e-1, 1])

@@ -15,7 +15,12 @@ class TableColumnsTest(unittest.TestCase):
 
     def test_a_heading_puts_the_unit_in_brackets(self):
         self.assertEqual(table_columns.heading("wall_seconds"), "wall_seconds [s]")
-        self.assertEqual(table_columns.heading("vibration_rms_final"), "vibration_rms_final [m]")
+        self.assertEqual(table_columns.heading("vibration_rms_final"), "vibration_rms_final [mm]")
+
+    def test_a_length_is_shown_in_mm_from_the_m_of_metrics_csv(self):
+        self.assertEqual(table_columns.shown_value("vibration_rms_final", 0.0025), 2.5)
+        self.assertEqual(table_columns.shown_value("wall_seconds", 0.0025), 0.0025)
+        self.assertEqual(table_columns.shown_value("steps", 7), 7)
         self.assertEqual(table_columns.heading("integrator.dt"), "integrator.dt [s]")
         self.assertEqual(table_columns.heading("steps"), "steps")
 
