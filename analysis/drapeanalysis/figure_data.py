@@ -1,6 +1,6 @@
 """What the report's figures plot, before any drawing: series names from a run's swept values,
-the points of an ensemble (mean and 95 % interval over its repeats), step ranks, a run's events and
-the time a run stopped, and the unit a length is plotted in (docs/analysis.md, "Figures")."""
+the points of an ensemble (mean and 95 % interval over its repeats), step ranks, a run's events,
+and the unit a length is plotted in (docs/analysis.md, "Figures")."""
 import math
 
 from . import runfiles, stats, table_columns
@@ -112,13 +112,6 @@ def event_times(directory, row):
         return []
     return [(float(e["t"]), e["type"]) for e in runfiles.read_summary(path.parent).get("events", [])
             if e.get("type") != "ignored"]
-
-
-def stop_time(directory, row):
-    """The simulated time a run reached (summary.json's sim_time; nan without one): where a run
-    that did not finish stopped."""
-    path = runfiles.run_dir(directory, row) / "summary.json"
-    return number(runfiles.read_summary(path.parent).get("sim_time")) if path.exists() else math.nan
 
 
 # Lengths are plotted in the unit the report's tables show them in (table_columns.UNITS: mm),

@@ -12,7 +12,7 @@ from matplotlib.lines import Line2D
 
 from . import runfiles, style
 from .figure_data import (INTEGRATOR_DETAIL, REPEAT_PARAMETER, event_times, method_label,
-                          scene_name, step, step_ranks, stop_time)
+                          number, scene_name, step, step_ranks)
 
 # The relative change's floor: round-off at the first rows would squash the log scale.
 REL_FLOOR = 1e-8
@@ -20,12 +20,12 @@ REL_FLOOR = 1e-8
 COLUMNS = 3
 
 
-def stopped_tag(directory, row):
+def stopped_tag(row):
     """" (diverged at t = 0.006 s)" (or the run's other status) for a run that did not finish,
     "" otherwise."""
     if row.get("status") in (None, "ok"):
         return ""
-    return f" ({row.get('status')} at t = {stop_time(directory, row):.3g} s)"
+    return f" ({row.get('status')} at t = {number(row.get('sim_time')):.3g} s)"
 
 
 def draw_run(ax, t, y, stopped, **line):
@@ -69,7 +69,7 @@ def energy_vs_time(directory, out_dir, rows, parameters):
         shown = varying([row for row, _ in runs], keys)
         first = runs[0][0]
         constant = [f"{k.split('.')[-1]}={first[k]}" for k in keys if k not in shown and k in first]
-        tags = [stopped_tag(directory, row) for row, _ in runs]
+        tags = [stopped_tag(row) for row, _ in runs]
         texts = [short_label(row, shown) + tag for (row, _), tag in zip(runs, tags)]
         counts, entries = Counter(texts), {}
         for (row, run), text, tag in zip(runs, texts, tags):
@@ -122,20 +122,22 @@ def energy_by_scene(directory, out_dir, rows, parameters):
         for ax, name in zip(axes, names):
             own = [(row, run) for row, run in runs
                    if str(row.get("integrator", "?")) == name and not row.get("is_reference")]
-            energy_panel(directory, ax, own, reference, name)
+            energy_panel(ax, own, reference, name)
         for ax in axes[len(names):]:
             ax.set_visible(False)
-        marked = (reference or runs)[0][0]  # the reference's events, else the first run's
-        for ax in axes[:len(names)]:
-            for t, _ in event_times(directory, marked):
+        # The reference's events, else the first run's: labelled in the first panel (mark_events
+        # draws its lines too), lines only in the others.
+        events = event_times(directory, (reference or runs)[0][0])
+        style.mark_events(axes[0], events)
+        for ax in axes[1:len(names)]:
+            for t, _ in events:
                 ax.axvline(t, c="0.45", lw=0.7, ls=":")
-        style.mark_events(axes[0], event_times(directory, marked))
         for ax in axes[::columns]:
             ax.set_ylabel("E(t) - E(0) [mJ]")
     return style.save(fig, out_dir, "energy_by_scene")
 
 
-def energy_panel(directory, ax, runs, reference, name):
+def energy_panel(ax, runs, reference, name):
     """One integrator's runs of a scene (line style per step) over the reference (dashed black),
     legend under the panel."""
     ranks = step_ranks(row for row, _ in runs)
@@ -145,7 +147,7 @@ def energy_panel(directory, ax, runs, reference, name):
         line = (dict(color="k", lw=1.2, ls="--", alpha=0.6, zorder=1) if is_reference else
                 dict(lw=1.0, color=style.integrator_color(row),
                      ls=style.LINE_STYLES[ranks[step(row)] % len(style.LINE_STYLES)]))
-        tag = stopped_tag(directory, row)
+        tag = stopped_tag(row)
         text = method_label(row) + (" (reference)" if is_reference else "") + tag
         shown = text not in ax.get_legend_handles_labels()[1]  # a repeat: no new entry
         draw_run(ax, energy["t"].to_numpy(), 1e3 * (energy["total"] - energy["total"].iloc[0]).to_numpy(),

@@ -129,7 +129,7 @@ def summary_tables(rows, parameters):
     # drift reads 0 when it diverged before the first), and its other metrics measure nothing.
     frame = pd.DataFrame([{"method": method_name(r, parameters), "scene": plots.scene_name(r),
                            "status": r.get("status"),
-                           "unfixed": r.get("status") == FINISHED and bool(attach_note(r, ATTACH_FIXED[0])),
+                           "unfixed": r.get("status") == FINISHED and plots.number(r.get("attach_unfixed_count")) > 0,
                            **{m: plots.number(r.get(m)) if r.get("status") == FINISHED else math.nan
                               for m, *_ in SUMMARY_METRICS}} for r in rows])
     if frame.empty:

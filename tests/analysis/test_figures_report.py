@@ -142,7 +142,9 @@ class EnergyFigureTest(FigureTest):
             run = self.make_run(name)
             write_summary(run, events, status=status, sim_time=0.006 if status != "ok" else 1.0)
             write_energy(run, times, 1.0 + 0.01 * times)
+            # sim_time in the row as in summary.json: merge copies it into results.json.
             rows.append(self.row(name, scene="scenes/s.json", integrator=integrator, status=status,
+                                 sim_time=0.006 if status != "ok" else 1.0,
                                  **{"integrator.dt": dt}, events=1, is_reference=name == "ref"))
         return rows
 

@@ -1,8 +1,6 @@
 """A run's energy.csv, hands.csv and trace.csv must reach its sim_time (run_series): a file cut on
 a row's end parses, and only summary.json tells that it stops early."""
-import tempfile
 import unittest
-from pathlib import Path
 
 import numpy as np
 
@@ -11,13 +9,10 @@ from drapeanalysis import runfiles
 from drapeanalysis.run_series import read_run_series
 
 
-class RunSeriesEndTest(unittest.TestCase):
+class RunSeriesEndTest(runfolder.RunFolderTest):
     def setUp(self):
-        self._tmp = tempfile.TemporaryDirectory()
-        self.run = Path(self._tmp.name)
-
-    def tearDown(self):
-        self._tmp.cleanup()
+        super().setUp()
+        self.run = self.make_run()
 
     def summary(self, sim_time, **scene_output):
         runfolder.write_summary(self.run, scene={"output": scene_output}, status="diverged",
