@@ -38,6 +38,8 @@ MARKERS = ("o", "s", "^", "v", "D", "P", "X", "*")
 
 # Log-axis error bars (log_errorbar): series k of n at the same x sit DODGE^(k - (n-1)/2) apart.
 DODGE = 10 ** 0.015
+# Half the width of an error bar's cap, in points (place_labels keeps labels clear of it).
+CAP_SIZE = 3
 # The foot of a bar whose interval reaches 0: an arrow glyph, unlike every integrator's marker.
 ZERO_MARK = r"$\downarrow$"
 
@@ -53,7 +55,7 @@ def log_errorbar(ax, xs, ys, half, index=0, count=1, dodge=True, log_y=True, **k
     half = [0.0 if h != h else h for h in half]  # nan (one run): no bar
     reaches_zero = [log_y and h >= y > 0 for y, h in zip(ys, half)]
     lower = [0.9 * y if zero else h for y, h, zero in zip(ys, half, reaches_zero)]
-    bars = ax.errorbar(xs, ys, yerr=[lower, half], capsize=3, **kwargs)
+    bars = ax.errorbar(xs, ys, yerr=[lower, half], capsize=CAP_SIZE, **kwargs)
     color = bars.lines[0].get_color()
     ends = [(x, 0.1 * y) for x, y, zero in zip(xs, ys, reaches_zero) if zero]
     if ends:
@@ -142,10 +144,12 @@ def place_labels(ax, points, texts, color, half=None, joined=False):
     boxes = ax._drape_boxes
     screen = [tuple(ax.transData.transform(p)) for p in points]
     boxes += [(x - gap, y - gap, x + gap, y + gap) for x, y in screen]
+    cap = CAP_SIZE * px_per_pt
     for (x, y), h in zip(points, half or []):
         if h == h and h > 0:  # nan: one run, no bar
+            # The caps are CAP_SIZE wide each side; a label at the bar's width touched them.
             (left, low), (_, high) = ax.transData.transform([(x, max(y - h, 0.1 * y)), (x, y + h)])
-            boxes.append((left - gap, low, left + gap, high))
+            boxes.append((left - cap - gap, low - gap, left + cap + gap, high + gap))
     if joined:  # the line between neighbours, as boxes a gap wide every gap along it
         for (x0, y0), (x1, y1) in zip(screen, screen[1:]):
             n = max(1, int(math.hypot(x1 - x0, y1 - y0) / gap))
@@ -158,8 +162,10 @@ def place_labels(ax, points, texts, color, half=None, joined=False):
 
     for (x, y), (px, py), text in zip(points, screen, texts):
         w = char * len(text)
+        # The corners sit a cap's half-width further out, so that one beside a bar clears its caps.
+        side = gap + (cap if half else 0)
         spots = [(gap, -height / 2), (-gap - w, -height / 2), (-w / 2, gap), (-w / 2, -gap - height),
-                 (gap, gap), (gap, -gap - height), (-gap - w, gap), (-gap - w, -gap - height)]
+                 (side, gap), (side, -gap - height), (-side - w, gap), (-side - w, -gap - height)]
         dx, dy = min(spots, key=lambda d: cost((px + d[0], py + d[1], px + d[0] + w, py + d[1] + height)))
         boxes.append((px + dx, py + dy, px + dx + w, py + dy + height))
         # In points, as the text is: offsets in pixels stayed the screen's at the PNG's 200 dpi

@@ -205,7 +205,9 @@
     };
     return { ok: true, three: THREE.REVISION, width: w, height: h, renders: renders, ui: this.ui_check(),
              notice: notice.hidden ? '' : notice.textContent, start: this.start,
-             layout: { canvas: box('gl'), labels: box('labels') },
+             energy_notes: this.plot.notes,
+             layout: { canvas: box('gl'), labels: box('labels'), legend: box('legend'),
+                       window_height: window.innerHeight },
              milliseconds: Math.round(performance.now()),
              runs: this.runs.map(function (r) { return { name: r.name, frames: r.frames.count }; }) };
   };

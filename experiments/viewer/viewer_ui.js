@@ -35,8 +35,10 @@ drape.build_labels = function (runs) {
     label.appendChild(title);
     var meta = drape.element('div', 'meta', drape.run_title(run) + ', ' + run.rows + ' x ' + run.cols + ' cloth');
     label.appendChild(meta);
+    // The reason is the banner's: repeated here it took two more lines of a short window.
     if (run.status !== 'ok')
-      label.appendChild(drape.element('div', 'status-bad', drape.status_text(run)));
+      label.appendChild(drape.element('div', 'status-bad', run.status + ' at t = ' +
+                                      run.sim_time.toFixed(3) + ' s (why: the banner above)'));
     var frame = drape.element('div', 'frame');
     label.appendChild(frame);
     if (run.description) label.title = run.description;
@@ -201,6 +203,23 @@ drape.EnergyPlot.prototype.draw = function () {
     run.energy.t.forEach(function (t, k) { (k ? g.lineTo : g.moveTo).call(g, tx(t), ty(all[i][k])); });
     g.stroke();
     g.lineWidth = 1;
+  });
+  // A run that stopped before its second energy row has no line to draw: its one point as a dot,
+  // and the plot says so (the plot stood empty beside the banner; docs/viewer.md, Diverged runs).
+  this.notes = [];
+  this.runs.forEach(function (run, i) {
+    var t = run.energy.t, colour = drape.run_colours[i % drape.run_colours.length];
+    if (t.length > 1) return;
+    if (t.length) {
+      g.fillStyle = colour;
+      g.beginPath(); g.arc(tx(t[0]), ty(all[i][0]), 3.5, 0, 2 * Math.PI); g.fill();
+    }
+    var text = run.name + ': ' + (t.length ? 'energy written at t = ' + t[0].toFixed(3) + ' s only'
+                                           : 'no energy row') +
+               ' (the run stopped at t = ' + run.sim_time.toFixed(3) + ' s)';
+    g.fillStyle = colour;
+    g.fillText(text, x0 + 60, y1 + 26 + 14 * self.notes.length);
+    self.notes.push(text);
   });
   g.strokeStyle = '#1f2933'; g.lineWidth = 1.5;
   var cx = Math.round(tx(this.t)) + 0.5;

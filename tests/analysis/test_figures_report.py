@@ -83,6 +83,11 @@ class StepFigureTest(FigureTest):
         self.assertEqual(ax.get_yscale(), "linear")
         self.assertIn("no contact switches in any run", texts(fig))
         self.assertEqual(ax.get_ylabel(), "contact switches [1/(particle s)]")  # not a length
+        # The axis starts at 0: centred on 0 it showed negative rates (second browser audit).
+        fig.canvas.draw()
+        self.assertEqual(ax.get_ylim()[0], 0.0)
+        low, high = ax.get_ylim()
+        self.assertTrue(all(tick >= 0 for tick in ax.get_yticks() if low <= tick <= high))
 
     def test_every_log_axis_has_two_labelled_ticks(self):
         # Values 3 to 8 mm: no power of ten inside the axis, which drew a single label or none.

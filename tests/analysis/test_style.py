@@ -61,6 +61,16 @@ class LogTicksTest(unittest.TestCase):
 
 
 
+def bar_axes():
+    """A 4 x 3 in figure with log axes from 1 to 100 and from 1e-4 to 0.1."""
+    fig, ax = plt.subplots(figsize=(4, 3))
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlim(1, 100)
+    ax.set_ylim(1e-4, 1e-1)
+    return fig, ax
+
+
 class PlaceLabelsTest(unittest.TestCase):
     def test_labels_placed_apart_stay_apart_at_the_png_resolution(self):
         # Three points a label's width apart on a log axis: placed on the screen (figure dpi),
@@ -84,11 +94,7 @@ class PlaceLabelsTest(unittest.TestCase):
         # A point with a long bar between two points a label's width away on either side: beside
         # it the label would cover a neighbour, so it goes above or below, along the bar, unless
         # the bar counts as an obstacle (it did not); it must cross neither the bar nor a point.
-        fig, ax = plt.subplots(figsize=(4, 3))
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlim(1, 100)
-        ax.set_ylim(1e-4, 1e-1)
+        fig, ax = bar_axes()
         xs, ys = [6.0, 10.0, 16.0], [1e-2, 1e-2, 1e-2]
         ax.errorbar(xs, ys, yerr=[[0, 9e-3, 0], [0, 5e-2, 0]], fmt="o")
         style.place_labels(ax, list(zip(xs, ys)), ["", "0.0333 s", ""], "C0", half=[0.0, 5e-2, 0.0])
@@ -100,9 +106,26 @@ class PlaceLabelsTest(unittest.TestCase):
         self.assertFalse(crosses_bar, (label, bar_x, low, high))
         plt.close(fig)
 
-if __name__ == "__main__":
-    unittest.main()
-
+    def test_a_label_keeps_clear_of_the_caps(self):
+        # Points on either side push the middle label above or below its bar; placed at the
+        # bar's width it touched a cap (second browser audit). It must stay a few pixels off
+        # each cap, CAP_SIZE points either side of the bar at its ends.
+        fig, ax = bar_axes()
+        xs, ys, half = [6.0, 10.0, 16.0], [1e-2, 1e-2, 1e-2], [0.0, 5e-3, 0.0]
+        style.log_errorbar(ax, xs, ys, half, dodge=False, fmt="o")
+        style.place_labels(ax, list(zip(xs, ys)), ["", "0.0333 s", ""], "C0", half=half)
+        fig.set_dpi(style.DPI)
+        fig.canvas.draw()
+        label = ax.texts[1].get_window_extent()
+        px = style.DPI / 72
+        for end in (5e-3, 1.5e-2):
+            bar_x, y = ax.transData.transform((10.0, end))
+            cap = (bar_x - style.CAP_SIZE * px, y - px, bar_x + style.CAP_SIZE * px, y + px)
+            clear = 2 * px
+            touches = (label.x0 < cap[2] + clear and label.x1 > cap[0] - clear
+                       and label.y0 < cap[3] + clear and label.y1 > cap[1] - clear)
+            self.assertFalse(touches, (label, cap))
+        plt.close(fig)
 
 class LabelLogTicksTest(unittest.TestCase):
     def labelled(self, low, high):
@@ -129,3 +152,7 @@ class LabelLogTicksTest(unittest.TestCase):
 
     def test_several_decades_keep_their_decade_ticks(self):
         np.testing.assert_allclose([loc for loc, _ in self.labelled(1e-3, 1.0)], [1e-3, 1e-2, 1e-1, 1])
+
+
+if __name__ == "__main__":
+    unittest.main()

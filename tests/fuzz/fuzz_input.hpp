@@ -9,19 +9,25 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 
 namespace drape::fuzz {
 
 /// Writes the fuzzer's bytes to `name` in a directory of this process's own (nothing else in
 /// it, so relative paths inside the input resolve to nothing) and returns its path.
+/// The directory is removed when the fuzzer exits (each CI run left five behind in /tmp).
 inline std::string input_file(const std::uint8_t* data, std::size_t size, const std::string& name) {
-  static const std::filesystem::path dir = [] {
-    const auto d = std::filesystem::temp_directory_path() /
-                   ("drapelab_fuzz_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  const std::filesystem::path file = dir / name;
+  struct OwnDirectory {
+    std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                 ("drapelab_fuzz_" + std::to_string(::getpid()));
+    OwnDirectory() { std::filesystem::create_directories(path); }
+    ~OwnDirectory() {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const OwnDirectory dir;
+  const std::filesystem::path file = dir.path / name;
   std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(data),
                                               static_cast<std::streamsize>(size));
   return file.string();

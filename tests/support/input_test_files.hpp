@@ -8,12 +8,31 @@
 #include <fstream>
 #include <initializer_list>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include "core/scene/input_error.hpp"
 
 namespace drape::test {
 
-/// A fresh empty directory for the current test (unique per test and process).
+/// The directories test_dir() made, removed when the test program exits (each ctest run left
+/// its fifteen behind in /tmp, named by process id).
+struct TestDirs {
+  std::vector<std::filesystem::path> made;
+  ~TestDirs() {
+    for (const auto& dir : made) {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  }
+};
+
+inline TestDirs& test_dirs() {
+  static TestDirs dirs;
+  return dirs;
+}
+
+/// A fresh empty directory for the current test (unique per test and process), removed at exit.
 inline std::filesystem::path test_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const auto dir = std::filesystem::temp_directory_path() /
@@ -21,6 +40,7 @@ inline std::filesystem::path test_dir() {
                     info->name() + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  test_dirs().made.push_back(dir);
   return dir;
 }
 

@@ -50,9 +50,12 @@ def find_chromium():
     return None
 
 
-def page_result(chromium, url, work, name):
-    """The page's #test-result (docs/viewer.md, Browser check), failing on the errors it logged."""
-    dom = run([chromium] + CHROMIUM_FLAGS + ["--dump-dom", url]).stdout
+def page_result(chromium, url, work, name, window="800,600"):
+    """The page's #test-result (docs/viewer.md, Browser check) in a window of `window` pixels,
+    failing on the errors it logged."""
+    flags = [f"--window-size={window}" if flag.startswith("--window-size") else flag
+             for flag in CHROMIUM_FLAGS]
+    dom = run([chromium] + flags + ["--dump-dom", url]).stdout
     (work / f"{name}.dom.html").write_text(dom)
     found = re.search(r'<pre id="test-result"[^>]*>(.*?)</pre>', dom, re.S)
     errors = re.search(r'<div id="errors"[^>]*>(.*?)</div>', dom, re.S)
@@ -82,6 +85,18 @@ def check_diverged(drapelab, chromium, scene, work):
     if result["notice"] != expected or result["start"] != 0:
         fail(f"diverged run: banner {result['notice']!r}, opened at {result['start']}; "
              f"expected {expected!r} at 0")
+    # Its one energy row (t = 0) is no line: the plot says so instead of standing empty.
+    note = f"leapfrog_2ms: energy written at t = 0.000 s only (the run stopped at t = {summary['sim_time']:.3f} s)"
+    if result["energy_notes"] != [note]:
+        fail(f"diverged run: energy plot notes {result['energy_notes']!r}, expected {[note]!r}")
+    # Beside a run that finished, in a short window: the banner, both labels, the plot and the
+    # legend fit without scrolling (the legend sat 20-40 px below the fold at 1000 x 700).
+    pair = work / "pair.html"
+    run([drapelab, "view", work / "leapfrog", work / "leapfrog_2ms", "--out", pair])
+    result = page_result(chromium, pair.resolve().as_uri() + "#test", work, "pair", "1000,700")
+    layout = result["layout"]
+    if not result["notice"] or layout["legend"]["bottom"] > layout["window_height"]:
+        fail(f"1000 x 700 with a banner: legend below the fold: {json.dumps(layout)}")
 
 
 def main():
@@ -120,9 +135,9 @@ def main():
     print(json.dumps(result))
     # The labels lie under the canvas, not over the cloth, and no banner for runs that are ok.
     canvas, labels = result["layout"]["canvas"], result["layout"]["labels"]
-    if labels["top"] < canvas["bottom"] - 0.5 or result["notice"]:
-        fail(f"labels over the canvas or a banner for ok runs: {json.dumps(result['layout'])}, "
-             f"{result['notice']!r}")
+    if labels["top"] < canvas["bottom"] - 0.5 or result["notice"] or result["energy_notes"]:
+        fail(f"labels over the canvas, or a banner or an energy note for ok runs: "
+             f"{json.dumps(result['layout'])}, {result['notice']!r}, {result['energy_notes']!r}")
     pixels = result["width"] * result["height"]
     renders = result["renders"]
     for r in renders:
