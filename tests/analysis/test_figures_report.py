@@ -133,6 +133,30 @@ class WorkPrecisionTest(FigureTest):
                     and line.get_marker() == "o"]
         np.testing.assert_allclose(np.asarray(leapfrog[0].get_ydata(), float), [1.15])
 
+    def test_no_step_label_crosses_an_error_bar(self):
+        # The 0.01 s point's bar spans 3 to 16 mm beside the 0.0333 s point near the panel's top
+        # (the integrator comparison's wall-time panel): every spot next to the 0.0333 s label
+        # crossed it or left the axes, so the label crossed the bar (second browser audit).
+        # (right-hand sides, error of seed 1, of seed 2): Student-t bars of 8-11 and 3-16 mm.
+        spread = {0.0333333: (80, 0.00938, 0.00962), 0.01: (165, 0.00899, 0.01001)}
+        rows = [dict(row, rhs_evals=spread[row["integrator.dt"]][0],
+                     wall_seconds=spread[row["integrator.dt"]][0] * 1e-5,
+                     error_rms=spread[row["integrator.dt"]][row["perturbation.seed"]])
+                if row["integrator.dt"] in spread else row for row in work_rows()]
+        _, fig = self.drawn(lambda out: plots.work_precision(out, rows, ["integrator.dt", "perturbation.seed"]))
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        for ax in fig.axes:
+            bars = [ax.transData.transform(segment) for collection in ax.collections
+                    for segment in collection.get_segments() if len(segment) == 2]
+            self.assertTrue(bars)
+            for text in ax.texts:
+                box = text.get_window_extent(renderer)
+                for (x0, y0), (x1, y1) in bars:
+                    crosses = (box.x0 < max(x0, x1) and box.x1 > min(x0, x1)
+                               and box.y0 < max(y0, y1) and box.y1 > min(y0, y1))
+                    self.assertFalse(crosses, (ax.get_xlabel(), text.get_text(), box, (x0, y0, x1, y1)))
+
 
 class EnergyFigureTest(FigureTest):
     def energy_runs(self):
