@@ -121,6 +121,8 @@ Recording read_kinect_v2_csv(const std::string& file) {
     recording.frame_places.push_back(lines.where());
   }
   if (recording.frames.empty()) throw InputError(file, "", "no frames");
+  // Every hand joint untracked (TrackingState 0) in every frame: nothing is ever held.
+  detail::check_something_to_replay(recording, file);
   return recording;
 }
 
@@ -177,6 +179,8 @@ Recording read_ntu_skeleton(const std::string& file) {
   if (!person)
     throw InputError(file, "", "no body in any of the " + std::to_string(frame_total) +
                                    " frames (every body count is 0): no hands to replay");
+  // Bodies whose hand joints are never tracked replay nothing either.
+  detail::check_something_to_replay(recording, file);
   return recording;
 }
 

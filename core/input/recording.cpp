@@ -111,6 +111,7 @@ Recording read_drapelab_recording(const std::string& file) {
   // A replay with no frames would run without hands as if nothing were wrong (as the Kinect
   // readers refuse an empty file).
   if (recording.frames.empty()) throw InputError(file, "", "no frames after the header");
+  detail::check_something_to_replay(recording, file);
   return recording;
 }
 
@@ -262,6 +263,14 @@ void check_time_order(double previous, double t, const std::string& file,
     throw InputError(file, field,
                      "time must increase from frame to frame: " + nlohmann::json(t).dump() +
                          " follows " + nlohmann::json(previous).dump());
+}
+
+void check_something_to_replay(const Recording& recording, const std::string& file) {
+  for (const HandFrame& frame : recording.frames)
+    if (frame.left || frame.right || !frame.keys.empty()) return;
+  throw InputError(file, "",
+                   "no hand tracked and no key in any of the " +
+                       std::to_string(recording.frames.size()) + " frames: nothing to replay");
 }
 
 }  // namespace detail

@@ -117,6 +117,9 @@ long long parse_integer(std::string_view token, const TextLines& lines, const st
 /// needs distinct knots, so equal times are rejected as well as time going backwards).
 void check_time_order(double previous, double t, const std::string& file,
                       const std::string& field);
+/// Throws an InputError unless some frame of `recording` has a hand or a key: a replay
+/// without either runs as if nothing were wrong and never holds anything.
+void check_something_to_replay(const Recording& recording, const std::string& file);
 
 }  // namespace detail
 }  // namespace drape

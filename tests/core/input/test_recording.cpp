@@ -158,8 +158,10 @@ TEST(Recording, BadNativeFilesNameFileAndLine) {
   check("key.jsonl", header + frame1 + "{\"t\": 1, \"keys\": [\"a\", \"zz\"]}\n",
         {"line 3.keys: expected \"r\" (release), \"a\" (attach) or \"m\" (map), got \"zz\""});
   check("frameless.jsonl", header + "\n", {"frameless.jsonl: no frames after the header"});
+  check("handless.jsonl", header + "{\"t\": 0, \"left\": null}\n{\"t\": 1}\n",
+        {"handless.jsonl: no hand tracked and no key in any of the 2 frames: nothing to replay"});
   // A Unix timestamp is a recording time.
-  const auto unix_time = write_file(dir, "unix.jsonl", header + "{\"t\": 1732700000.5}\n");
+  const auto unix_time = write_file(dir, "unix.jsonl", header + "{\"t\": 1732700000.5, \"right\": [0, 1, 2]}\n");
   EXPECT_EQ(read_drapelab_recording(unix_time).frames.at(0).t, 1732700000.5);
 }
 
