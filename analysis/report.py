@@ -27,7 +27,8 @@ try:
 except ImportError:  # drapelab report checks for matplotlib and numpy only
     sys.exit("report.py needs pandas (Debian: apt install python3-pandas; install_dependencies.sh installs it)")
 
-from drapeanalysis import metrics, plots, report_options, runfiles, table_columns, viewer_pages  # noqa: E402
+from drapeanalysis import (metrics, plots, report_options, results_file, runfiles,  # noqa: E402
+                           table_columns, viewer_pages)
 from drapeanalysis.report_summary import (SUMMARY_NOTE, attach_note, method_name, summary_tables,  # noqa: E402
                                           unfinished_banner)
 from drapeanalysis.fileio import OutputError, atomic_output, check_writable_folder, output_folder  # noqa: E402
@@ -308,7 +309,7 @@ def main():
         if args.directory.is_dir():
             check_writable_folder(args.directory)
         remove_previous_report(args.directory / "report")
-        results = runfiles.load_complete_experiment(args.directory)
+        results = results_file.load_complete_experiment(args.directory)
         animated = (report_options.animated_runs(args.directory, results["runs"], args.animate)
                     if args.animate is not None else [])
         rows, windows = add_metrics(args.directory, results)

@@ -5,8 +5,9 @@
     drapeanalysis.vibration_cutoff(summary)            # the cutoff from a run's model [Hz]
     drapeanalysis.summarise(df, ["integrator"], ["vibration_rms_final"])
 """
+from .results_file import results_table
 from .runfiles import (read_energy, read_hands, read_json, read_state, read_summary, read_table,
-                       read_trace, results_table, trace_frames)
+                       read_trace, trace_frames)
 from .spectral import (model_frequencies, slow_motion_rms, split_motion, vibration_cutoff,
                        vibration_rms)
 from .stats import summarise, t_quantile

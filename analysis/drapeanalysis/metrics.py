@@ -4,7 +4,7 @@ import math
 import numpy as np
 
 from . import runfiles, spectral
-from .run_series import read_run_series
+from .run_series import read_run_event_trace, read_run_restart_error, read_run_series
 
 # Defaults of the vibration metrics (docs/analysis.md): window after an event and the speed
 # below which cloth rests. The cutoff between slow motion and vibration comes from the model
@@ -120,7 +120,7 @@ def vibration(run, summary, window=VIBRATION_WINDOW):
     `window` seconds of the run, above the cutoff derived from the run's scene. The windows after
     events come from event_trace/ when the run wrote one (a fixed fine rate), else from
     trace.csv; the last window and the steady holding from trace.csv. Empty without either."""
-    coarse_file, fine = run / "trace.csv", runfiles.read_event_trace(run)
+    coarse_file, fine = run / "trace.csv", read_run_event_trace(run, summary)
     if not coarse_file.exists() and fine is None:
         return {}, []
     try:
@@ -292,7 +292,7 @@ def short_horizon_error(run, reference_run, horizon=SHORT_HORIZON):
     (`short_error_start`), and averaged over the events at the same time in both runs: at the
     event (`short_error_events_inherited`, what the run brings into it) and `horizon` after it
     (`short_error_events`). Empty without both event traces (docs/analysis.md)."""
-    mine, theirs = runfiles.read_event_trace(run), runfiles.read_event_trace(reference_run)
+    mine, theirs = read_run_event_trace(run), read_run_event_trace(reference_run)
     if mine is None or theirs is None:
         return {}
     if mine["x"].shape[1:] != theirs["x"].shape[1:]:
@@ -317,7 +317,7 @@ def short_horizon_error(run, reference_run, horizon=SHORT_HORIZON):
             "short_error_events_n": len(after)}
 
 
-def restart_error(run):
+def restart_error(run, summary):
     """The restart error (docs/analysis.md, "Restart error") from restart_error.csv. At the first
     horizon: `restart_error_start` (from the common start), `restart_error_events` (mean over
     the branches after the reference's events), `restart_error_after_<kind>` (over the events of
@@ -327,7 +327,7 @@ def restart_error(run):
     path = run / "restart_error.csv"
     if not path.exists():
         return {}
-    rows = runfiles.read_restart_error(path)
+    rows = read_run_restart_error(run, summary)
     out = {"restart_error_failed": int((rows["status"] != "ok").sum())}
     horizons = sorted(rows["horizon"].unique())
     for k, horizon in enumerate(horizons):
@@ -367,7 +367,7 @@ def run_metrics(directory, row, rows_by_id):
     vib, windows = vibration(run, summary)
     out.update(vib)
     out.update(mapping_error(run, summary))
-    out.update(restart_error(run))
+    out.update(restart_error(run, summary))
     reference = rows_by_id.get(row.get("reference") or "")
     if reference is not None:
         out.update(reference_error(run, runfiles.run_dir(directory, reference)))

@@ -10,6 +10,7 @@ import numpy as np
 from . import runfiles, stats, style, table_columns
 from .figure_data import (INTEGRATOR_DETAIL, REPEAT_PARAMETER, label, method_label,
                           number, plotted_unit, scene_name, step, step_ranks)
+from .run_series import read_run_restart_error
 from .style import integrator_color
 
 
@@ -98,7 +99,7 @@ def restart_error_vs_horizon(directory, out_dir, rows, parameters):
         path = runfiles.run_dir(directory, row) / "restart_error.csv"
         if row.get("is_reference") or not path.exists():
             continue
-        branches = runfiles.read_restart_error(path)
+        branches = read_run_restart_error(path.parent, runfiles.read_summary(path.parent))
         after = branches[(branches["events"] != "start") & (branches["status"] == "ok")]
         rest = label(row, parameters, ("integrator.dt", REPEAT_PARAMETER) + INTEGRATOR_DETAIL)
         name = method_label(row) + (f", {rest}" if rest != scene_name(row) else "")

@@ -15,10 +15,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .figure_catalogue import KNOWN_METRICS
 from .fileio import input_problem, open_input
-from .values import (JSON_TYPES, RESTART_STATUSES, RESULT_STATUSES, RUN_STATUSES, check_finite_array,
-                     check_flags, check_increasing, check_status, finite_number, json_type, shown)
+from .values import (RESTART_STATUSES, RUN_STATUSES, check_finite_array, check_flags, check_increasing,
+                     check_status, finite_number, json_type, shown)
 
 TRACE_COLUMNS = ("t", "index", "x", "y", "z", "vx", "vy", "vz", "fixed", "contact", "event")
 STATE_COLUMNS = ("index", "row", "col", "x", "y", "z", "vx", "vy", "vz", "fixed")
@@ -82,6 +81,11 @@ def read_restart_error(path):
         check_status(status, RESTART_STATUSES, path, f"row {k + 1}, column status")
         if not horizon > 0:
             raise ValueError(f"{path}: row {k + 1}, column horizon: {horizon:g}, expected a positive time")
+        # nan only where the branch did not reach its horizon: an ok branch measured all three.
+        for name in measured:
+            if status == "ok" and not np.isfinite(rows[name].iloc[k]):
+                raise ValueError(f"{path}: row {k + 1}, column {name}: not a finite number in a branch "
+                                 f"whose status is ok")
     return rows
 
 
@@ -195,95 +199,6 @@ def read_event_trace(run):
 def positions(frame):
     """The x, y, z columns of a state, dummy or trace DataFrame as an (N, 3) array."""
     return frame[["x", "y", "z"]].to_numpy(dtype=float)
-
-
-# The fields of results.json the analysis reads (docs/experiments.md, "The table"): their JSON
-# type and, for a list, its items' type. Other fields are let be: rows carry any swept key.
-RESULTS_FIELDS = {"name": (str, None), "question": (str, None), "metrics": (list, str),
-                  "parameters": (list, str), "plan_size": (int, None), "columns": (list, str),
-                  "runs": (list, dict)}
-
-
-def check_results(doc, path):
-    """A ValueError naming results.json and the field when the document lacks a field the report
-    reads or holds the wrong type there, names an unknown metric or lists more runs than its
-    plan_size, when a run's id is empty, repeated or would name a file outside the report's
-    folder (RUN_ID.mp4, view/RUN_ID.html), or its status is not one merge writes."""
-    if not isinstance(doc, dict):
-        raise ValueError(f"{path}: expected a JSON object, got {json_type(doc)}")
-    for key, (kind, item) in RESULTS_FIELDS.items():
-        if key not in doc:
-            raise ValueError(f"{path}: {key}: missing")
-        value = doc[key]
-        wrong = next((v for v in value if not isinstance(v, item)), None) if isinstance(value, list) and item else None
-        if not isinstance(value, kind) or isinstance(value, bool) or wrong is not None:
-            what = JSON_TYPES[kind] + (f" of {JSON_TYPES[item].split(' ', 1)[1]}s" if item else "")
-            raise ValueError(f"{path}: {key}: expected {what}, got {shown(value if wrong is None else wrong)}")
-    for k, name in enumerate(doc["metrics"]):
-        if name not in KNOWN_METRICS:
-            raise ValueError(f"{path}: metrics[{k}]: unknown metric {shown(name)} (known: "
-                             f"{', '.join(sorted(KNOWN_METRICS))})")
-    seen = set()
-    for k, run in enumerate(doc["runs"]):
-        for key in ("id", "run_dir"):
-            if not isinstance(run.get(key), str) or not run[key]:
-                raise ValueError(f"{path}: runs[{k}].{key}: expected a non-empty string, got {shown(run.get(key))}")
-        if "/" in run["id"] or run["id"] in (".", ".."):
-            raise ValueError(f"{path}: runs[{k}].id: {run['id']!r} is not a file name (it names the run's "
-                             "animation and viewer page)")
-        if run["id"] in seen:
-            raise ValueError(f"{path}: runs[{k}].id: {run['id']!r} repeats an earlier run's id")
-        seen.add(run["id"])
-        check_status(run.get("status"), RESULT_STATUSES, path, f"runs[{k}].status")
-    # merge writes the plan's size and the runs that finished, never more runs than planned.
-    if doc["plan_size"] < len(doc["runs"]):
-        raise ValueError(f"{path}: plan_size: {doc['plan_size']}, but runs lists {len(doc['runs'])} "
-                         "runs (merge writes at most the plan's runs)")
-
-
-def load_experiment(directory):
-    """The results document (results.json) of an experiment folder, as a dict, checked
-    (check_results)."""
-    path = Path(directory) / "results.json"
-    doc = read_json(path)
-    check_results(doc, path)
-    return doc
-
-
-def load_complete_experiment(directory):
-    """results.json of an experiment folder whose finished runs have all their files; a
-    ValueError naming the folder or the missing files otherwise: a report of runs whose files
-    are gone would show them as if they had run."""
-    directory = Path(directory)
-    if not directory.is_dir():
-        raise ValueError(f"{directory}: {'not a folder' if directory.exists() else 'no such folder'}")
-    if not (directory / "results.json").exists():
-        kind = "a run's folder, not an experiment's: " if (directory / "summary.json").exists() else ""
-        raise ValueError(f"{directory}: {kind}no results.json (run `drapelab experiment` or `drapelab merge` first)")
-    results = load_experiment(directory)
-    if not results.get("runs"):
-        raise ValueError(f"{directory / 'results.json'}: no runs (an experiment with an empty plan, or a "
-                         "merge before any shard finished)")
-    if len(results["runs"]) < results["plan_size"]:
-        raise ValueError(f"{directory / 'results.json'}: {len(results['runs'])} of {results['plan_size']} "
-                         "planned runs have a result (a merge that named missing runs, or an experiment "
-                         "that was stopped): run the rest (`drapelab experiment` resumes, shards run "
-                         "again) and `drapelab merge`, then report")
-    missing = [str(path) for row in results["runs"] for path in missing_run_files(directory, row)]
-    if missing:
-        listed = ", ".join(missing[:5]) + (f" and {len(missing) - 5} more" if len(missing) > 5 else "")
-        raise ValueError(f"{directory}: runs listed in results.json lack their files: {listed} "
-                         "(remove such a run's result.json and rerun `drapelab experiment` to redo it)")
-    return results
-
-
-def results_table(directory):
-    """The runs of an experiment's results.json as a DataFrame, one row per run, columns in the
-    document's order."""
-    doc = load_experiment(directory)
-    frame = pd.DataFrame(doc["runs"])
-    return frame[[c for c in doc["columns"] if c in frame.columns]
-                 + [c for c in frame.columns if c not in doc["columns"]]]
 
 
 def read_summary(run):

@@ -68,6 +68,10 @@ void check_experiment_folder(const fs::path& dir, const std::string& name, bool 
                    conflict + "; pass --overwrite to replace them, or choose another folder");
 }
 
+void remove_results_table(const fs::path& dir) {
+  for (const char* name : {"results.json", "results.csv", "summary.csv"}) fs::remove(dir / name);
+}
+
 void clear_experiment_folder(const fs::path& dir) {
   fs::create_directories(dir);
   for (const auto& name : experiment_file_names()) fs::remove_all(dir / name);

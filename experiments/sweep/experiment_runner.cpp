@@ -177,6 +177,8 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
   fs::create_directories(options.out_dir / "runs");
   const nlohmann::json header = experiment_header(experiment, plan);
   write_json(options.out_dir / "experiment.json", header, process_tmp_suffix());
+  // A shard writes its own table under shards/; the merged one is merge's to replace.
+  if (!options.shard) remove_results_table(options.out_dir);
 
   std::vector<nlohmann::json> rows(slice.size());
   // It counts the runs too: its tally is the invocation's.

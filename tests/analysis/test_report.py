@@ -15,7 +15,7 @@ from PIL import Image
 
 import runfolder
 import report
-from drapeanalysis import report_summary, runfiles
+from drapeanalysis import report_summary, results_file
 
 
 class ReportTableTest(unittest.TestCase):
@@ -135,7 +135,7 @@ class ReportEndToEndTest(unittest.TestCase):
         # figures and no snapshots (which cost a large report a third of its time).
         out = self.directory / "only_energy"
         out.mkdir()
-        results = runfiles.load_experiment(self.directory)
+        results = results_file.load_experiment(self.directory)
         stems = [stem for stem, _ in report.make_figures(self.directory, out, results["runs"],
                                                          results["parameters"], ("energy_drift",))]
         self.assertIn("energy_vs_time", stems)

@@ -88,7 +88,7 @@ class InputNotARegularFileTest(ReportTestCase):
 
     def test_a_named_pipe_in_place_of_any_input_is_refused(self):
         # The optional inputs too: the event trace and the hands.
-        runfolder.write_event_trace(self.run, [0.0, 0.001, 0.002], np.zeros((3, 12, 3)))
+        runfolder.write_event_trace(self.run, [0.0, 0.5, 1.0], np.zeros((3, 12, 3)))  # to the run's end
         runfolder.write_hands(self.run, [(t, "right", 1, 0.0, 1.0, 0.0) for t in (0.0, 1.0)])
         for path in [self.directory / "results.json"] + [self.run / name for name in (
                 "summary.json", "energy.csv", "trace.csv", "hands.csv", "event_trace/t.npy", "dummy.csv")]:

@@ -4,7 +4,7 @@ horizons, and failed branches counted and left out."""
 import math
 
 from drapeanalysis import metrics, plots
-from runfolder import RunFolderTest
+from runfolder import RunFolderTest, write_summary
 
 HEADER = "t,events,horizon,status,error_rms,error_max,reference_motion_rms\n"
 ROWS = [
@@ -23,7 +23,7 @@ class RestartErrorTest(RunFolderTest):
     def test_means_over_the_events_by_kind_and_horizon(self):
         run = self.make_run("restarts")
         (run / "restart_error.csv").write_text(HEADER + "\n".join(ROWS) + "\n")
-        out = metrics.restart_error(run)
+        out = metrics.restart_error(run, {})
         self.assertAlmostEqual(out["restart_error_start"], 0.001)
         self.assertAlmostEqual(out["restart_error_events"], (0.004 + 0.002) / 2)
         self.assertAlmostEqual(out["restart_error_after_hold"], 0.004)
@@ -36,15 +36,17 @@ class RestartErrorTest(RunFolderTest):
 
     def test_no_file_no_columns_and_a_bad_cell_is_named(self):
         run = self.make_run("none")
-        self.assertEqual(metrics.restart_error(run), {})
+        self.assertEqual(metrics.restart_error(run, {}), {})
         (run / "restart_error.csv").write_text(HEADER + "0,start,0.0333333,ok,abc,0.1,0.1\n")
         with self.assertRaisesRegex(ValueError, r"restart_error.csv: row 1, column error_rms"):
-            metrics.restart_error(run)
+            metrics.restart_error(run, {})
 
     def test_figure_skips_a_run_whose_event_branches_all_failed(self):
         good, failed = self.make_run("good"), self.make_run("failed")
         (good / "restart_error.csv").write_text(HEADER + "\n".join(ROWS) + "\n")
         (failed / "restart_error.csv").write_text(HEADER + ROWS[0] + "\n" + ROWS[-1] + "\n")
+        for run in (good, failed):
+            write_summary(run, sim_time=2.0)
         rows = [self.row("good", integrator="leapfrog", dt=1e-4, scene="s.json"),
                 self.row("failed", integrator="implicit-euler", dt=0.01, scene="s.json")]
         out = self.directory / "report"

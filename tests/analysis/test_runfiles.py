@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 import runfolder
-from drapeanalysis import metrics, runfiles
+from drapeanalysis import metrics, results_file, runfiles
 
 
 class BadInputTest(unittest.TestCase):
@@ -210,7 +210,8 @@ class ValueTest(runfolder.RunFolderTest):
         header = "t,events,horizon,status,error_rms,error_max,reference_motion_rms"
         ok = (0.0, "start", 0.01, "ok", 1e-6, 2e-6, 1e-3)
         for status in ("ok", "reference_diverged", "reference_failed", "diverged", "failed"):
-            runfolder.write_csv(path, header, [ok, (0.1, "hold", 0.01, status, "nan", "nan", "nan")])
+            measured = ok[4:] if status == "ok" else ("nan", "nan", "nan")  # an ok branch measured
+            runfolder.write_csv(path, header, [ok, (0.1, "hold", 0.01, status) + measured])
             self.assertEqual(list(runfiles.read_restart_error(path)["status"]), ["ok", status])
         runfolder.write_csv(path, header, [ok, (0.1, "hold", 0.01, "banana", "nan", "nan", "nan")])
         self.assertRefused(lambda: runfiles.read_restart_error(path), path,
@@ -294,11 +295,38 @@ class DocumentTest(runfolder.RunFolderTest):
                 ({**self.RESULTS, "runs": [{"id": "a", "run_dir": "runs/a", "status": "banana"}]},
                  'runs[0].status: expected one of ok, diverged, failed, error, crashed, got "banana"'),
                 ({**self.RESULTS, "runs": [{"id": "a", "run_dir": "runs/a"}]},
-                 "runs[0].status: expected one of ok, diverged, failed, error, crashed, got null")):
+                 "runs[0].status: expected one of ok, diverged, failed, error, crashed, got null"),
+                # drapelab writes null, never nan: the report blanked a nan without a word.
+                ({**self.RESULTS, "runs": [{**runs[0], "wall_seconds": float("nan")}]},
+                 "runs[0].wall_seconds: not a finite number (drapelab writes null, never nan or inf)"),
+                ({**self.RESULTS, "runs": [{**runs[0], "counters": {"steps": float("inf")}}]},
+                 "runs[0].counters.steps: not a finite number (drapelab writes null, never nan or inf)")):
             with self.subTest(message):
-                self.assertRefused("results.json", doc, message, runfiles.load_experiment)
+                self.assertRefused("results.json", doc, message, results_file.load_experiment)
         (self.directory / "results.json").write_text(json.dumps(self.RESULTS))
-        self.assertEqual(runfiles.load_experiment(self.directory), self.RESULTS)
+        self.assertEqual(results_file.load_experiment(self.directory), self.RESULTS)
+
+    def test_results_of_another_plan_than_experiment_json(self):
+        # A resumed experiment stopped before it wrote its table left the last one's beside a
+        # plan of three runs; the report showed the two old runs as the experiment.
+        (self.directory / "results.json").write_text(json.dumps(self.RESULTS))
+        plan = {"plan_size": 1, "plan": [{"id": "a"}]}
+        (self.directory / "experiment.json").write_text(json.dumps(plan))
+        results_file.check_plan(self.directory, self.RESULTS)
+        for header, stale in (({"plan_size": 3, "plan": [{"id": "a"}, {"id": "b"}, {"id": "c"}]},
+                               "results.json plans 1 runs, experiment.json 3"),
+                              ({"plan_size": 1, "plan": [{"id": "b"}]},
+                               "results.json's run 'a' is not in experiment.json's plan")):
+            (self.directory / "experiment.json").write_text(json.dumps(header))
+            with self.subTest(stale), self.assertRaises(ValueError) as error:
+                results_file.check_plan(self.directory, self.RESULTS)
+            self.assertEqual(str(error.exception), f"{self.directory}: {stale}: the table is of another "
+                             "invocation (one stopped before it wrote its own); run `drapelab experiment` "
+                             "again to finish it, then report")
+        (self.directory / "experiment.json").write_text(json.dumps({"plan_size": "1"}))
+        with self.assertRaises(ValueError) as error:
+            results_file.check_plan(self.directory, self.RESULTS)
+        self.assertIn("experiment.json: expected plan_size (an integer) and plan (a list)", str(error.exception))
 
     def test_summary_json(self):
         ok = {"status": "ok"}

@@ -22,7 +22,7 @@ def frames(window_starts, end):
 class ShortHorizonErrorTest(RunFolderTest):
     def write(self, name, events, offset):
         run = self.make_run(name)
-        runfolder.write_summary(run, events, runfolder.CLOTH_SCENE)
+        runfolder.write_summary(run, events, runfolder.CLOTH_SCENE, sim_time=0.7)
         t = frames([0.0] + [e["t"] for e in events], 0.7)
         x = np.zeros((len(t), 2, 3))
         x[:, 0, 0] = offset * t
@@ -68,7 +68,7 @@ class ShortHorizonErrorTest(RunFolderTest):
         hold = [{"t": 0.2, "type": "hold", "hand": "left"}]
         run = self.write("a", hold, 0.0)
         other = self.make_run("ref")
-        runfolder.write_summary(other, hold, runfolder.CLOTH_SCENE)
+        runfolder.write_summary(other, hold, runfolder.CLOTH_SCENE, sim_time=0.7)
         t = frames([0.0, 0.2], 0.7)
         runfolder.write_event_trace(other, t, np.zeros((len(t), 3, 3)))
         with self.assertRaisesRegex(ValueError, r"a/event_trace: 2 particles, the reference .*ref/event_trace has 3"):
@@ -89,8 +89,10 @@ class ShortHorizonErrorTest(RunFolderTest):
         runs = []
         for name, offset in (("a", 0.0), ("ref", DRIFT)):
             run = self.make_run(name)
-            runfolder.write_summary(run, [{"t": 0.2, "type": "hold", "hand": "left"}],
-                                    runfolder.CLOTH_SCENE)
+            scene = {**runfolder.CLOTH_SCENE, "output": {"event_trace_interval": 1 / RATE,
+                                                         "event_trace_window": 0.02}}
+            runfolder.write_summary(run, [{"t": 0.2, "type": "hold", "hand": "left"}], scene,
+                                    sim_time=1.0)
             t = np.concatenate([np.arange(21) / RATE, 0.2 + np.arange(21) / RATE])
             x = np.zeros((len(t), 2, 3))
             x[:, 0, 0] = offset * t

@@ -257,9 +257,8 @@ TEST(NtuSkeleton, BadInputNamesFileAndLine) {
             bodiless + ": no body in any of the 3 frames (every body count is 0): no hands to replay");
   // A body whose hand joints are never tracked (state 0): frames without hands too (exit 0
   // before; bad-input audit of 2026-11-29).
-  const auto untracked = write_file(dir, "untracked.skeleton",
-                                    "2\n1\n" + ntu_body(person, Vec3(0, 0, 2), Vec3(0, 0, 2), 0, 0) +
-                                        "1\n" + ntu_body(person, Vec3(0, 0, 2), Vec3(0, 0, 2), 0, 0));
+  const std::string never = ntu_body(person, Vec3(0, 0, 2), Vec3(0, 0, 2), 0, 0);
+  const auto untracked = write_file(dir, "untracked.skeleton", "2\n1\n" + never + "1\n" + never);
   EXPECT_EQ(testing::input_error_message([&] { read_ntu_skeleton(untracked); }),
             untracked + ": no hand tracked and no key in any of the 2 frames: nothing to replay");
 }
@@ -270,10 +269,12 @@ TEST(KinectV2Csv, ARecordingWithNoTrackedHandIsAnInputError) {
   const auto dir = test_dir();
   const JointValues untracked{"0", "0", "2", "0"};
   const std::string none = csv_line("100", {{7, untracked}, {11, untracked}});
-  const auto file = write_file(dir, "untracked.csv", none + csv_line("200", {{7, untracked}, {11, untracked}}));
+  const auto file =
+      write_file(dir, "untracked.csv", none + csv_line("200", {{7, untracked}, {11, untracked}}));
   EXPECT_EQ(testing::input_error_message([&] { read_kinect_v2_csv(file); }),
             file + ": no hand tracked and no key in any of the 2 frames: nothing to replay");
-  const Recording one = read_kinect_v2_csv(write_file(dir, "one.csv", none + csv_line("200", {{11, untracked}})));
+  const Recording one =
+      read_kinect_v2_csv(write_file(dir, "one.csv", none + csv_line("200", {{11, untracked}})));
   EXPECT_TRUE(one.frames[1].left);
   EXPECT_FALSE(one.frames[1].right);
 }

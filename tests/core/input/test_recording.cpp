@@ -161,7 +161,8 @@ TEST(Recording, BadNativeFilesNameFileAndLine) {
   check("handless.jsonl", header + "{\"t\": 0, \"left\": null}\n{\"t\": 1}\n",
         {"handless.jsonl: no hand tracked and no key in any of the 2 frames: nothing to replay"});
   // A Unix timestamp is a recording time.
-  const auto unix_time = write_file(dir, "unix.jsonl", header + "{\"t\": 1732700000.5, \"right\": [0, 1, 2]}\n");
+  const auto unix_time =
+      write_file(dir, "unix.jsonl", header + "{\"t\": 1732700000.5, \"right\": [0, 1, 2]}\n");
   EXPECT_EQ(read_drapelab_recording(unix_time).frames.at(0).t, 1732700000.5);
 }
 

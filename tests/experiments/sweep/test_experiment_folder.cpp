@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <initializer_list>
+
 #include "tests/experiments/sweep/experiment_fixtures.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -11,6 +14,14 @@ namespace {
 
 using namespace drape::experiment_fixtures;
 using drape::testing::input_error_message;
+
+/// The names in `dir`, sorted.
+std::vector<std::string> names_in(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  return names;
+}
 
 std::string refusal(const fs::path& dir, bool overwrite = false) {
   return input_error_message([&] { drape::check_experiment_folder(dir, "small", overwrite); });
@@ -63,17 +74,33 @@ TEST(ExperimentFolder, ARunsOrAnotherExperimentsFolderIsRefusedWithoutOverwrite)
   EXPECT_EQ(refusal(dir), "no error");
 }
 
-TEST(ExperimentFolder, OverwriteClearsOnlyRunAndExperimentFiles) {
-  const fs::path dir = temp_dir("folder_clear");
+/// A folder `name` with runs/a/, report/ and a file of each of `files`.
+fs::path folder_with(const std::string& name, std::initializer_list<const char*> files) {
+  const fs::path dir = temp_dir(name);
   fs::create_directories(dir / "runs" / "a");
   fs::create_directories(dir / "report");
-  for (const char* name : {"experiment.json", "results.csv", "results.json", "summary.json",
-                           "energy.csv", "notes.txt"})
-    std::ofstream(dir / name) << "x";
+  for (const char* file : files) std::ofstream(dir / file) << "x";
+  return dir;
+}
+
+TEST(ExperimentFolder, OverwriteClearsOnlyRunAndExperimentFiles) {
+  const fs::path dir = folder_with("folder_clear", {"experiment.json", "results.csv",
+                                                    "results.json", "summary.json", "energy.csv",
+                                                    "notes.txt"});
   drape::clear_experiment_folder(dir);
-  std::vector<std::string> left;
-  for (const auto& entry : fs::directory_iterator(dir)) left.push_back(entry.path().filename());
-  EXPECT_EQ(left, std::vector<std::string>{"notes.txt"});
+  EXPECT_EQ(names_in(dir), std::vector<std::string>{"notes.txt"});
+}
+
+// A new invocation removes the last one's table before it runs: stopped before it wrote its own,
+// it left results.json of another plan, which the report read as the experiment's.
+TEST(ExperimentFolder, ANewInvocationRemovesTheLastResultsTableOnly) {
+  const fs::path dir = folder_with("folder_results", {"experiment.json", "results.csv",
+                                                      "results.json", "summary.csv", "metrics.csv",
+                                                      "notes.txt"});
+  drape::remove_results_table(dir);
+  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"experiment.json", "metrics.csv", "notes.txt",
+                                                     "report", "runs"}));
+  drape::remove_results_table(dir);  // none there: nothing to do
 }
 
 }  // namespace
