@@ -61,7 +61,12 @@ void LiveHands::sample(double now, double wanted, HandTrack& track) {
   // Frames at least a spacing apart: closer ones give the curve tangents that throw it far out
   // (a frame 4e-17 s after the last, the rounding of now + lead, was left out on every turn and
   // froze the run).
-  const double spacing = std::max(m_margin, lead / 100);
+  // After frames left out (their curve left the scene), the next one is spaced wider, doubling
+  // each time: at the same spacing the same frame was left out on every turn while the track
+  // held the run at its limit, which froze it for as long as the hand stayed (bad-input audit of
+  // 2026-11-29). A gap beyond max_gap starts a new run of samples, which bends nothing.
+  const double spacing =
+      std::max(m_margin, lead / 100) * std::ldexp(1.0, std::min(m_refused, 30));
   HandFrame frame;
   frame.t = now + lead;
   if (!m_frames.empty() && frame.t < m_frames.back().t + spacing) {
@@ -114,6 +119,9 @@ void LiveHands::sample(double now, double wanted, HandTrack& track) {
           fmt::format("t = {} s: {}", nlohmann::json(m_frames.back().t).dump(), *violation));
       m_frames.pop_back();
       track = HandTrack(m_frames, SensorTransform{}, TimeMap{}, m_policy);
+      ++m_refused;
+    } else {
+      m_refused = 0;
     }
   }
   track.add_keys(m_keys, TimeMap{});

@@ -58,6 +58,7 @@ class LiveHands {
   /// Per hand (left, right): taken away after it had samples, and not back in a new run yet.
   bool m_gone[2] = {false, false};
   std::vector<std::string> m_left_out;
+  int m_refused = 0;  ///< frames left out in a row since the last one taken
   double m_limit = std::numeric_limits<double>::infinity();
 };
 

@@ -16,10 +16,10 @@ namespace {
 constexpr int poll_ms = 100;                    // how often a waiting thread checks for stop
 constexpr std::size_t max_line = 1 << 20;       // bytes; a longer line ends its connection
 
-// Waits up to poll_ms for input on fd; false on timeout.
-bool readable(int fd) {
+// Waits up to `ms` for input on fd; false on timeout.
+bool readable(int fd, int ms = poll_ms) {
   pollfd p{fd, POLLIN, 0};
-  return ::poll(&p, 1, poll_ms) > 0;
+  return ::poll(&p, 1, ms) > 0;
 }
 
 }  // namespace
@@ -67,10 +67,26 @@ void SensorBridge::read_connection(int fd, const std::string& name) {
   int number = 0;
   double previous_t = -std::numeric_limits<double>::infinity();
   char chunk[4096];
+  bool said_waiting = false;
   while (!m_stop) {
-    if (!readable(fd)) continue;
+    if (!readable(fd)) {
+      // One connection is read at a time: a client that connects and sends nothing holds the
+      // others back, which the terminal now says (it said nothing; bad-input audit, 2026-11-29).
+      if (!said_waiting && readable(m_listen_fd, 0)) {
+        said_waiting = true;
+        std::cerr << fmt::format("drapelab live: {}: another sensor connection waits until this "
+                                 "one closes (one is read at a time)\n", name);
+      }
+      continue;
+    }
     const ssize_t n = ::recv(fd, chunk, sizeof chunk, 0);
-    if (n <= 0) return;  // the bridge closed the connection (or it broke)
+    if (n < 0) return;  // the connection broke
+    if (n == 0) {
+      // Closed: a last line without its newline (a file piped in that does not end in one) is
+      // still a line; it was dropped without a word.
+      if (!buffer.empty()) line(buffer, name, ++number, previous_t);
+      return;
+    }
     buffer.append(chunk, static_cast<std::size_t>(n));
     std::size_t end;
     while ((end = buffer.find('\n')) != std::string::npos) {

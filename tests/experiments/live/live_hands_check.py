@@ -19,6 +19,7 @@ import shutil
 import socket
 import struct
 import sys
+import time
 
 from live_client import LiveRun, free_port, replay_events
 
@@ -78,13 +79,20 @@ def main():
                      'not json',
                      '{"t": 0.05, "right": [0.0, 50.0, 0.0]}',
                      *[json.dumps({"t": 0.1 * k, "right": list(lift)}) for k in range(1, 4)]]
-            bridge.sendall(("\n".join(lines) + "\n").encode())
+            # No newline after the last line (a file piped in that does not end in one): it is
+            # still a line, read when the connection closes (it was dropped without a word).
+            bridge.sendall("\n".join(lines).encode())
             frame = run.wait_for(lambda f: near(right_hand(f)["position"], lift, 1e-12) and
                                  f["t"] > frame["t"] + 0.2, "the sensor's hand")
         assert right_hand(frame)["held"] == HELD
         # a held particle is fixed to the hand (docs/manipulations.md): float32 of the same point
         assert near(particle(frame, HELD), lift, 1e-6), (particle(frame, HELD), lift)
         print(f"sensor: hand and particle {HELD} at {lift} at t = {frame['t']:.3f} s")
+
+        # A client that connects and sends nothing holds the next one back: the terminal says so.
+        with socket.create_connection(("127.0.0.1", sensor_port), timeout=10), \
+                socket.create_connection(("127.0.0.1", sensor_port), timeout=10):
+            time.sleep(0.5)
 
         assert run.post("/key", "r") == (200, "ok\n")
         run.wait_for(lambda f: any(e["type"] == "release" for e in f["events"]), "the release")
@@ -100,6 +108,7 @@ def main():
         assert "connection 1: line 2.right: expected an array of numbers" in stderr, stderr
         assert "connection 1: line 3: not valid JSON" in stderr, stderr
         assert "connection 1: line 4: right.y: 50 is not a scene coordinate" in stderr, stderr
+        assert "connection 2: another sensor connection waits until this one closes" in stderr, stderr
 
         summary = json.loads((out / "summary.json").read_text())
         assert summary["status"] == "stopped", summary["status"]

@@ -196,6 +196,28 @@ TEST(LiveHands, AFrameThatThrowsTheCurveOutOfTheSceneIsLeftOut) {
   EXPECT_EQ(track.motion(Hand::Right, 0.0666 + LiveHands::lead)->position.x(), 9.9);
 }
 
+// A run slower than the wall clock (0.5 ms of scene time a turn) samples a spacing after the
+// last frame every turn; a hand that moves 9.5 m throws the curve out at that spacing, and at
+// the same spacing the frame was left out on every turn while the track held the run at its
+// limit: it stopped there for good (bad-input audit of 2026-11-29, `drapelab live`). Spaced
+// wider each time, the frame is taken after a few turns and the run moves on.
+TEST(LiveHands, ARunHeldByAFrameLeftOutMovesOn) {
+  LiveHands hands(TrackPolicy{}, {}, margin);
+  HandTrack track;
+  hands.set(Hand::Right, at(0.0, 1.0, 0.3));
+  double now = 0.0;
+  for (int turn = 0; turn < 300; ++turn) {
+    if (turn == 10) hands.set(Hand::Right, at(9.5, 1.0, 0.3));
+    hands.sample(now, ahead, track);
+    ASSERT_FALSE(track.curve_bound_violation()) << "turn " << turn;
+    now = std::min(now + 5e-4, hands.limit());
+  }
+  ASSERT_FALSE(hands.left_out().empty());
+  EXPECT_LE(hands.left_out().size(), 12u) << hands.left_out().back();
+  EXPECT_DOUBLE_EQ(now, 300 * 5e-4);  // held at 0.1078 s before
+  EXPECT_EQ(track.motion(Hand::Right, now + LiveHands::lead)->position.x(), 9.5);
+}
+
 TEST(LiveHands, RecordingMergesKeysIntoFramesInTimeOrder) {
   HandFrame scene_key;
   scene_key.t = 0.5;
