@@ -17,6 +17,16 @@ RESULTS_FIELDS = {"name": (str, None), "question": (str, None), "metrics": (list
                   "runs": (list, dict)}
 
 
+# The numbers of a results row (experiments/sweep/results_table.cpp): a number or null. A
+# string there ("nan", edited in) went into the tables as a blank without a word.
+NUMERIC_COLUMNS = ("dt", "steps", "rhs_evals", "wall_seconds", "sim_time", "duration", "particles",
+                   "springs", "object_particles", "energy_initial", "energy_final",
+                   "energy_drift_max_abs", "energy_drift_max_rel", "energy_drift_final_rel",
+                   "energy_rise_max_rel", "hold_count", "release_count", "map_count", "ignored_count",
+                   "attach_count", "attach_error_mean", "attach_error_max", "stable_value",
+                   "unstable_value", "probes")
+
+
 def non_finite(value, where=""):
     """The place (`runs[0].wall_seconds`) of the first non-finite number in a JSON value, or
     None. drapelab writes null for a value it has not, never nan or inf: either is damage, and
@@ -64,6 +74,10 @@ def check_results(doc, path):
             raise ValueError(f"{path}: runs[{k}].id: {run['id']!r} repeats an earlier run's id")
         seen.add(run["id"])
         check_status(run.get("status"), RESULT_STATUSES, path, f"runs[{k}].status")
+        for key in NUMERIC_COLUMNS:
+            value = run.get(key)
+            if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))):
+                raise ValueError(f"{path}: runs[{k}].{key}: expected a number or null, got {shown(value)}")
     place = non_finite(doc)
     if place is not None:
         raise ValueError(f"{path}: {place}: not a finite number (drapelab writes null, never nan or inf)")

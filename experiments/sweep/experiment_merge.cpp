@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "core/scene/input_error.hpp"
@@ -104,6 +105,9 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
   }
   const nlohmann::json header = read_header(out_dir);
   const std::vector<std::string> ids = plan_ids(header);
+  // Why a source's copy of a run was not taken (a damaged result.json): said with the run when
+  // no source gives it, where a damaged shard read as one not yet run (bad-input audit).
+  std::map<std::string, std::string> source_problems;
   for (const fs::path& source : sources) {
     if (fs::equivalent(source, out_dir)) continue;
     const std::string differs = header_difference(read_header(source), header);
@@ -115,6 +119,8 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
       const std::string& id = ids[k];
       const fs::path from = source / "runs" / id, to = out_dir / "runs" / id;
       const StoredResult found = finished_run(from, header["plan"][k]);
+      if (!found.row && !found.problem.empty())
+        source_problems[id] += (source_problems[id].empty() ? "" : "; ") + found.problem;
       if (!found.row || finished_run(to, header["plan"][k]).row) continue;
       check_run_files(from, *found.row);  // a damaged run is named, not copied
       check_copyable(from);
@@ -136,7 +142,10 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
   for (std::size_t k = 0; k < ids.size(); ++k) {
     auto [row, problem] = finished_run(out_dir / "runs" / ids[k], header["plan"][k]);
     if (!row) {
-      missing.push_back(problem.empty() ? ids[k] : ids[k] + ": " + problem);
+      std::string why = problem;
+      const std::string& in_sources = source_problems[ids[k]];
+      if (!in_sources.empty()) why += (why.empty() ? "" : "; ") + in_sources;
+      missing.push_back(why.empty() ? ids[k] : ids[k] + ": " + why);
       continue;
     }
     check_run_files(out_dir / "runs" / ids[k], *row);

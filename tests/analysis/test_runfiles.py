@@ -299,6 +299,8 @@ class DocumentTest(runfolder.RunFolderTest):
                 # drapelab writes null, never nan: the report blanked a nan without a word.
                 ({**self.RESULTS, "runs": [{**runs[0], "wall_seconds": float("nan")}]},
                  "runs[0].wall_seconds: not a finite number (drapelab writes null, never nan or inf)"),
+                ({**self.RESULTS, "runs": [{**runs[0], "energy_final": "nan"}]},
+                 'runs[0].energy_final: expected a number or null, got "nan"'),
                 ({**self.RESULTS, "runs": [{**runs[0], "counters": {"steps": float("inf")}}]},
                  "runs[0].counters.steps: not a finite number (drapelab writes null, never nan or inf)")):
             with self.subTest(message):

@@ -42,9 +42,19 @@ TEST(ExperimentMerge, TakesRunsOnlyOfThisExperimentAndItsPlannedRuns) {
   std::ofstream(edited) << spec;
   const fs::path source_spec = small.options.out_dir / "runs" / small.plan[2].id / "run.json";
   std::ofstream(source_spec) << spec;
+  const std::string not_planned = ": is not this run of the plan";
   EXPECT_EQ(drape::merge_results(ours, {small.options.out_dir}),
-            std::vector<std::string>({small.plan[2].id + ": " + edited.string() +
-                                      ": is not this run of the plan"}));
+            std::vector<std::string>({small.plan[2].id + ": " + edited.string() + not_planned +
+                                      "; " + source_spec.string() + not_planned}));
+  // A source's damaged result.json is named with its run (the run read as not yet run).
+  fs::remove_all(ours / "runs" / small.plan[1].id);
+  const fs::path damaged = small.options.out_dir / "runs" / small.plan[1].id / "result.json";
+  std::ofstream(damaged) << "{\"id\": ";
+  EXPECT_EQ(drape::merge_results(ours, {small.options.out_dir}),
+            std::vector<std::string>(
+                {small.plan[1].id + ": " + damaged.string() + ": is not valid JSON",
+                 small.plan[2].id + ": " + edited.string() + not_planned + "; " +
+                     source_spec.string() + not_planned}));
 }
 
 // A merged folder that cannot be created is the command line's DIR, exit 2 (bad-input audit,
