@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "core/scene/input_error.hpp"
 #include "experiments/run/run_files.hpp"
+#include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/sweep/results_table.hpp"
 #include "experiments/sweep/stored_runs.hpp"
 
@@ -77,6 +79,22 @@ std::string header_difference(const nlohmann::json& source, const nlohmann::json
   return "";
 }
 
+// The first field in which two results of one run differ, or "": the machine, the build and the
+// wall time may (a run repeated elsewhere), the outcome may not. Two folders with different
+// results of one run (overlapping shards, an edited result.json) were merged by keeping the first
+// without a word (bad-input audit of 2026-11-29).
+std::string result_difference(const nlohmann::json& a, const nlohmann::json& b) {
+  static const std::set<std::string> may_differ = {
+      "wall_seconds", "date",          "machine.hostname", "machine.cpu",     "machine.cores",
+      "git_commit",   "version",       "build_type",       "sundials_version"};
+  for (const nlohmann::json* row : {&a, &b})
+    for (const auto& item : row->items())
+      if (!may_differ.count(item.key()) &&
+          a.value(item.key(), nlohmann::json()) != b.value(item.key(), nlohmann::json()))
+        return item.key();
+  return "";
+}
+
 // Throws InputError naming the first entry of the run folder `dir` that is neither a file nor a
 // folder: a named pipe (or a device, a socket) cannot be copied, and reading one would wait for
 // a writer for ever.
@@ -121,7 +139,16 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
       const StoredResult found = finished_run(from, header["plan"][k]);
       if (!found.row && !found.problem.empty())
         source_problems[id] += (source_problems[id].empty() ? "" : "; ") + found.problem;
-      if (!found.row || finished_run(to, header["plan"][k]).row) continue;
+      if (!found.row) continue;
+      if (const StoredResult there = finished_run(to, header["plan"][k]); there.row) {
+        const std::string field = result_difference(*found.row, *there.row);
+        if (!field.empty())
+          throw InputError((from / experiment_run_file::result).string(), field,
+                           "differs from " + (to / experiment_run_file::result).string() +
+                               ", which is merged already: two results of one run (overlapping "
+                               "shards, or an edited file); remove the wrong one");
+        continue;
+      }
       check_run_files(from, *found.row);  // a damaged run is named, not copied
       check_copyable(from);
       fs::remove_all(to);

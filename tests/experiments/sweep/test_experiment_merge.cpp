@@ -57,6 +57,31 @@ TEST(ExperimentMerge, TakesRunsOnlyOfThisExperimentAndItsPlannedRuns) {
                      source_spec.string() + not_planned}));
 }
 
+// Two folders with a finished result of one run: the wall time (and the machine, the build) may
+// differ, the outcome may not (the first was kept without a word; bad-input audit, 2026-11-29).
+TEST(ExperimentMerge, TwoDifferentResultsOfOneRunAreRefused) {
+  const SmallExperiment small("merge_disagree");
+  drape::run_experiment(small.experiment, small.options);
+  const fs::path ours = small.dir / "merged", copy = small.dir / "copy";
+  ASSERT_EQ(drape::merge_results(ours, {small.options.out_dir}).size(), 0u);
+  fs::copy(small.options.out_dir, copy, fs::copy_options::recursive);
+  const fs::path result = copy / "runs" / small.plan[0].id / "result.json";
+  json row = read_json(result);
+  row["wall_seconds"] = row["wall_seconds"].get<double>() + 1.0;
+  std::ofstream(result) << row;
+  EXPECT_EQ(drape::merge_results(ours, {copy}).size(), 0u);
+  row["energy_final"] = 123.0;
+  std::ofstream(result) << row;
+  try {
+    drape::merge_results(ours, {copy});
+    ADD_FAILURE() << "merged two results of one run";
+  } catch (const drape::InputError& e) {
+    EXPECT_EQ(e.file(), result.string());
+    EXPECT_EQ(e.field(), "energy_final");
+    EXPECT_NE(std::string(e.what()).find("two results of one run"), std::string::npos) << e.what();
+  }
+}
+
 // A merged folder that cannot be created is the command line's DIR, exit 2 (bad-input audit,
 // 2026-11-28: a raw filesystem error, exit 1).
 TEST(ExperimentMerge, AFolderThatCannotBeCreatedIsNamed) {
