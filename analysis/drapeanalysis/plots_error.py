@@ -99,7 +99,7 @@ def restart_error_vs_horizon(directory, out_dir, rows, parameters):
         path = runfiles.run_dir(directory, row) / "restart_error.csv"
         if row.get("is_reference") or not path.exists():
             continue
-        branches = read_run_restart_error(path.parent, runfiles.read_summary(path.parent))
+        branches = read_run_restart_error(path.parent)
         after = branches[(branches["events"] != "start") & (branches["status"] == "ok")]
         rest = label(row, parameters, ("integrator.dt", REPEAT_PARAMETER) + INTEGRATOR_DETAIL)
         name = method_label(row) + (f", {rest}" if rest != scene_name(row) else "")

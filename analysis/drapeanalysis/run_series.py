@@ -78,14 +78,18 @@ def read_run_event_trace(run, summary=None):
     return frames
 
 
-def read_run_restart_error(run, summary):
+def read_run_restart_error(run, summary=None):
     """runfiles.read_restart_error of the run's restart_error.csv; a ValueError naming it when
     it has another number of rows than summary.json's restart_error.rows (a file cut at a row
-    boundary lost branches, and the means changed without a word)."""
+    boundary lost branches, and the means changed without a word). `summary` is read from the
+    run folder when not given."""
     path, summary_path = Path(run) / "restart_error.csv", Path(run) / "summary.json"
     rows = runfiles.read_restart_error(path)
+    summary = runfiles.read_summary(run) if summary is None else summary
     section = summary.get("restart_error", {})
-    expected = section.get("rows") if isinstance(section, dict) else section
+    if not isinstance(section, dict):
+        raise ValueError(f"{summary_path}: restart_error: expected an object, got {shown(section)}")
+    expected = section.get("rows")
     if expected is not None and (not isinstance(expected, int) or isinstance(expected, bool)):
         raise ValueError(f"{summary_path}: restart_error.rows: expected an integer, got {shown(expected)}")
     if expected is not None and len(rows) != expected:

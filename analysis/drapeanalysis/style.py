@@ -167,11 +167,13 @@ def place_labels(ax, points, texts, color, half=None, joined=False):
         # Rings of spots, each a label's height further out (the corners further up or down) and
         # chosen only where every nearer spot overlaps something: a neighbour's bar crossed a label
         # placed beside it (second browser audit).
-        spots = [(ring, (gap + far, -height / 2), (-gap - w - far, -height / 2))
-                 + tuple((x, y) for y in (gap + far, -gap - height - far) for x in (-w / 2, side, -side - w))
-                 for ring, far in enumerate((0.0, height, 2 * height))]
-        _, (dx, dy) = min(((ring[0] + cost((px + d[0], py + d[1], px + d[0] + w, py + d[1] + height)), d)
-                           for ring in spots for d in ring[1:]), key=lambda pair: pair[0])
+        spots = []  # (ring, dx, dy)
+        for ring, far in enumerate((0.0, height, 2 * height)):
+            spots += [(ring, gap + far, -height / 2), (ring, -gap - w - far, -height / 2)]
+            spots += [(ring, dx, dy) for dy in (gap + far, -gap - height - far)
+                      for dx in (-w / 2, side, -side - w)]
+        _, dx, dy = min(spots, key=lambda s: s[0] + cost((px + s[1], py + s[2], px + s[1] + w,
+                                                          py + s[2] + height)))
         boxes.append((px + dx, py + dy, px + dx + w, py + dy + height))
         # In points, as the text is: offsets in pixels stayed the screen's at the PNG's 200 dpi
         # while the text doubled, and labels placed apart overlapped.

@@ -1,6 +1,7 @@
 #include "experiments/sweep/experiment_merge.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <map>
@@ -125,7 +126,7 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
   const std::vector<std::string> ids = plan_ids(header);
   // Why a source's copy of a run was not taken (a damaged result.json): said with the run when
   // no source gives it, where a damaged shard read as one not yet run (bad-input audit).
-  std::map<std::string, std::string> source_problems;
+  std::map<std::string, std::vector<std::string>> source_problems;
   for (const fs::path& source : sources) {
     if (fs::equivalent(source, out_dir)) continue;
     const std::string differs = header_difference(read_header(source), header);
@@ -137,8 +138,7 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
       const std::string& id = ids[k];
       const fs::path from = source / "runs" / id, to = out_dir / "runs" / id;
       const StoredResult found = finished_run(from, header["plan"][k]);
-      if (!found.row && !found.problem.empty())
-        source_problems[id] += (source_problems[id].empty() ? "" : "; ") + found.problem;
+      if (!found.row && !found.problem.empty()) source_problems[id].push_back(found.problem);
       if (!found.row) continue;
       if (const StoredResult there = finished_run(to, header["plan"][k]); there.row) {
         const std::string field = result_difference(*found.row, *there.row);
@@ -169,10 +169,9 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
   for (std::size_t k = 0; k < ids.size(); ++k) {
     auto [row, problem] = finished_run(out_dir / "runs" / ids[k], header["plan"][k]);
     if (!row) {
-      std::string why = problem;
-      const std::string& in_sources = source_problems[ids[k]];
-      if (!in_sources.empty()) why += (why.empty() ? "" : "; ") + in_sources;
-      missing.push_back(why.empty() ? ids[k] : ids[k] + ": " + why);
+      std::vector<std::string> why = source_problems[ids[k]];
+      if (!problem.empty()) why.insert(why.begin(), problem);
+      missing.push_back(why.empty() ? ids[k] : fmt::format("{}: {}", ids[k], fmt::join(why, "; ")));
       continue;
     }
     check_run_files(out_dir / "runs" / ids[k], *row);

@@ -88,6 +88,11 @@ class RunSeriesEndTest(runfolder.RunFolderTest):
             read_run_restart_error(self.run, runfiles.read_summary(self.run))
         self.assertEqual(str(error.exception), f"{self.run / 'restart_error.csv'}: 2 rows, but summary.json's "
                          "restart_error.rows is 3: the file is cut or was changed")
+        runfolder.write_summary(self.run, sim_time=1.0, restart_error=2)
+        with self.assertRaises(ValueError) as error:
+            read_run_restart_error(self.run)  # its summary read from the folder
+        self.assertEqual(str(error.exception), f"{self.run / 'summary.json'}: restart_error: expected an "
+                         "object, got 2")
         # An ok branch measured its error: nan there is damage (it blanked the metric silently).
         runfolder.write_csv(self.run / "restart_error.csv", header, [rows[0][:4] + ("nan",) + rows[0][5:]])
         with self.assertRaises(ValueError) as error:
