@@ -15,10 +15,10 @@
 namespace drape {
 
 int list_integrators() {
-  fmt::print("{:<18} {:<9} {:>5} {:>8}  {}\n", "integrator", "kind", "order", "adaptive",
+  fmt::print("{:<18} {:<9} {:>5} {:>8}  {}\n", "integrator", "family", "order", "adaptive",
              "description");
   for (const auto& info : integrators())
-    fmt::print("{:<18} {:<9} {:>5} {:>8}  {}\n", info.name, info.kind, info.order,
+    fmt::print("{:<18} {:<9} {:>5} {:>8}  {}\n", info.name, info.family, info.order,
                info.adaptive ? "yes" : "no", info.description);
   const auto tables = integrator_tables();
   if (!tables.empty()) {

@@ -46,7 +46,55 @@ void reject_unused_keys(const JsonReader& in, const IntegratorOptions& o) {
                                 " read it");
 }
 
+// A declared key's value, checked against its type and range.
+nlohmann::json read_setting(JsonReader& in, const SettingKey& key) {
+  switch (key.type) {
+    case SettingKey::Type::integer:
+      return in.integer_in(key.name, static_cast<std::int64_t>(key.min),
+                           static_cast<std::int64_t>(key.max), key.default_value.get<long>());
+    case SettingKey::Type::number: {
+      const double value = in.number(key.name, key.default_value.get<double>());
+      const bool below = key.open_min ? !(value > key.min) : !(value >= key.min);
+      const bool above = key.open_max ? !(value < key.max) : !(value <= key.max);
+      if (below || above) throw in.error(key.name, "must be a " + key.range_text());
+      return value;
+    }
+    case SettingKey::Type::boolean:
+      return in.boolean(key.name, key.default_value.get<bool>());
+    case SettingKey::Type::choice: {
+      const std::string value = in.string(key.name, key.default_value.get<std::string>());
+      for (const std::string& c : key.choices)
+        if (c == value) return value;
+      throw in.error(key.name, "unknown value '" + shorten(value) + "' (" + key.range_text() + ")");
+    }
+  }
+  return nullptr;
+}
+
+// The declared default of a key of the named integrator; a key it does not declare is a
+// programming error.
+const nlohmann::json& declared_setting(const IntegratorOptions& o, const std::string& key) {
+  if (const auto it = o.settings.find(key); it != o.settings.end()) return *it;
+  const IntegratorDeclaration* declaration = find_integrator(o.name);
+  const SettingKey* declared = declaration ? declaration->key(key) : nullptr;
+  if (!declared) throw std::logic_error("integrator '" + o.name + "' declares no key " + key);
+  return declared->default_value;
+}
+
 }  // namespace
+
+long IntegratorOptions::setting_integer(const std::string& key) const {
+  return declared_setting(*this, key).get<long>();
+}
+double IntegratorOptions::setting_number(const std::string& key) const {
+  return declared_setting(*this, key).get<double>();
+}
+bool IntegratorOptions::setting_flag(const std::string& key) const {
+  return declared_setting(*this, key).get<bool>();
+}
+std::string IntegratorOptions::setting_choice(const std::string& key) const {
+  return declared_setting(*this, key).get<std::string>();
+}
 
 IntegratorOptions read_integrator_options(const nlohmann::json& object, const std::string& file,
                                           const std::string& path) {
@@ -114,6 +162,8 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
   o.max_linear_iters = in.integer("max_linear_iters", o.max_linear_iters);
   if (o.max_linear_iters < 1) throw in.error("max_linear_iters", "must be at least 1");
   o.max_steps = static_cast<long>(in.integer_in("max_steps", 1, limits::max_steps, o.max_steps));
+  for (const SettingKey& key : find_integrator(o.name)->keys)
+    o.settings[key.name] = read_setting(in, key);
   in.finish();
   reject_unused_keys(in, o);
   validate_integrator_choice(o, file, path);
@@ -162,7 +212,7 @@ double linear_tolerance_of(const IntegratorOptions& options) {
 }
 
 nlohmann::json to_json(const IntegratorOptions& o) {
-  return {{"name", o.name},
+  nlohmann::json written = {{"name", o.name},
           {"dt", o.dt},
           {"adaptive", o.adaptive},
           {"table", o.user_table.is_null() ? nlohmann::json(o.table) : o.user_table},
@@ -179,6 +229,9 @@ nlohmann::json to_json(const IntegratorOptions& o) {
           {"linear_tolerance", linear_tolerance_of(o)},
           {"max_linear_iters", o.max_linear_iters},
           {"max_steps", o.max_steps}};
+  for (const SettingKey& key : find_integrator(o.name)->keys)
+    written[key.name] = declared_setting(o, key.name);
+  return written;
 }
 
 }  // namespace drape

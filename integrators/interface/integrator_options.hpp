@@ -43,6 +43,15 @@ struct IntegratorOptions {
   double linear_tolerance = 0.0;
   int max_linear_iters = 200;     ///< Krylov / CG iterations per solve
   long max_steps = 100000000;     ///< safety bound on steps per run
+  /// The keys the integrator declares as its own (integrator_declaration.hpp), by name; a key
+  /// not given holds its declared default after read_integrator_options(). Read them with the
+  /// setting_* functions, which fall back to the default for options built in code.
+  nlohmann::json settings = nlohmann::json::object();
+
+  long setting_integer(const std::string& key) const;
+  double setting_number(const std::string& key) const;
+  bool setting_flag(const std::string& key) const;
+  std::string setting_choice(const std::string& key) const;
 };
 
 /// The linear solver an implicit integrator uses: `linear_solver`, or when empty pcg-multigrid

@@ -37,21 +37,51 @@ std::string names_of_kind(ArkodeKind kind) {
   return names;
 }
 
+std::unique_ptr<Integrator> make_arkode_stepper(ClothSystem& system,
+                                                const IntegratorOptions& options) {
+  return std::make_unique<ArkodeStepper>(system, *arkode_kind(options.name), options);
+}
+
+// The integrators whose keys are IntegratorOptions' named fields (docs/integrators.md); the
+// later ones declare their own keys in their folders.
+std::vector<IntegratorDeclaration> built_in_declarations() {
+  return {
+      {"leapfrog", "explicit", 2, false, "the paper's leap-frog (kick-drift-kick form)", {},
+       [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
+         return std::make_unique<Leapfrog>(system, options.dt);
+       }},
+      {"symplectic-euler", "explicit", 1, false, "semi-implicit Euler, velocity first", {},
+       [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
+         return std::make_unique<SymplecticEuler>(system, options.dt);
+       }},
+      {"implicit-euler", "implicit", 1, false,
+       "Baraff-Witkin linearised backward Euler, CG or sparse LDLT on the 3N velocity system",
+       {},
+       [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
+         return std::make_unique<ImplicitEuler>(system, options);
+       }},
+      {"arkode-erk", "explicit", 3, true,
+       "ARKODE ARKStep explicit Runge-Kutta, any ERK table (default Bogacki-Shampine 3(2))", {},
+       make_arkode_stepper},
+      {"arkode-dirk", "implicit", 3, true,
+       "ARKODE ARKStep diagonally implicit Runge-Kutta, any DIRK table (default KVAERNO_4_2_3)",
+       {}, make_arkode_stepper},
+      {"arkode-imex", "imex", 3, true,
+       "ARKODE ARKStep IMEX: springs implicit, gravity, air and collision explicit", {},
+       make_arkode_stepper},
+  };
+}
+
 }  // namespace
 
-const std::vector<IntegratorInfo>& integrators() {
-  static const std::vector<IntegratorInfo> list = {
-      {"leapfrog", "explicit", 2, false, "the paper's leap-frog (kick-drift-kick form)"},
-      {"symplectic-euler", "explicit", 1, false, "semi-implicit Euler, velocity first"},
-      {"implicit-euler", "implicit", 1, false,
-       "Baraff-Witkin linearised backward Euler, CG or sparse LDLT on the 3N velocity system"},
-      {"arkode-erk", "explicit", 3, true,
-       "ARKODE ARKStep explicit Runge-Kutta, any ERK table (default Bogacki-Shampine 3(2))"},
-      {"arkode-dirk", "implicit", 3, true,
-       "ARKODE ARKStep diagonally implicit Runge-Kutta, any DIRK table (default KVAERNO_4_2_3)"},
-      {"arkode-imex", "imex", 3, true,
-       "ARKODE ARKStep IMEX: springs implicit, gravity, air and collision explicit"},
-  };
+const std::vector<IntegratorDeclaration>& integrators() {
+  static const std::vector<IntegratorDeclaration> list = [] {
+    std::vector<IntegratorDeclaration> all = built_in_declarations();
+    // Each later integrator's folder declares it (integrator_declaration.hpp).
+    for (IntegratorDeclaration (*declare)() : std::initializer_list<IntegratorDeclaration (*)()>{})
+      all.push_back(declare());
+    return all;
+  }();
   return list;
 }
 
@@ -64,7 +94,7 @@ std::vector<TableInfo> integrator_tables() {
   return list;
 }
 
-const IntegratorInfo* find_integrator(const std::string& name) {
+const IntegratorDeclaration* find_integrator(const std::string& name) {
   for (const auto& info : integrators())
     if (info.name == name) return &info;
   return nullptr;
@@ -87,8 +117,8 @@ void validate_integrator_choice(const IntegratorOptions& options, const std::str
       throw InputError(file, path + ".table",
                        "'" + options.table + "' has no embedded method: adaptive steps need one");
   }
-  const IntegratorInfo* info = find_integrator(options.name);
-  if (info && info->kind == "explicit" && !options.linear_solver.empty())
+  const IntegratorDeclaration* info = find_integrator(options.name);
+  if (info && info->family != "implicit" && info->family != "imex" && !options.linear_solver.empty())
     throw InputError(file, path + ".linear_solver",
                      "integrator '" + options.name + "' is explicit: it solves no linear systems");
   if (!reduced_solve_named(linear_solver_of(options)))
@@ -109,13 +139,9 @@ void validate_integrator_choice(const IntegratorOptions& options, const std::str
 
 std::unique_ptr<Integrator> make_integrator(const IntegratorOptions& options,
                                             ClothSystem& system) {
-  if (options.name == "leapfrog") return std::make_unique<Leapfrog>(system, options.dt);
-  if (options.name == "symplectic-euler")
-    return std::make_unique<SymplecticEuler>(system, options.dt);
-  if (options.name == "implicit-euler") return std::make_unique<ImplicitEuler>(system, options);
-  if (const std::optional<ArkodeKind> kind = arkode_kind(options.name))
-    return std::make_unique<ArkodeStepper>(system, *kind, options);
-  throw std::logic_error("make_integrator: no factory for " + options.name);
+  const IntegratorDeclaration* declaration = find_integrator(options.name);
+  if (!declaration) throw std::logic_error("make_integrator: no integrator " + options.name);
+  return declaration->make(system, options);
 }
 
 }  // namespace drape
