@@ -109,8 +109,15 @@ static int run_drapelab(int argc, char** argv) {
                    "with --stability: override a scene value (key.path=value)")
       ->needs(stability_option);
   stability_option->excludes(table_option);
+  bool integrators_json = false;
+  integrators
+      ->add_flag("--json", integrators_json,
+                 "print each integrator's declaration (family, order, keys with defaults and "
+                 "ranges) as JSON")
+      ->excludes(table_option)
+      ->excludes(stability_option);
   integrators->footer(
-      "Examples:\n  drapelab integrators\n"
+      "Examples:\n  drapelab integrators\n  drapelab integrators --json\n"
       "  drapelab integrators --table ARKODE_KVAERNO_4_2_3 > kvaerno.json\n"
       "  drapelab integrators --stability experiments/scenes/drape_dress_form.json");
   bool fabrics_json = false;
@@ -165,7 +172,7 @@ static int run_drapelab(int argc, char** argv) {
     if (integrators->parsed() && stability_option->count() > 0)
       return drape::with_command_line_overrides(stability_scene, stability_overrides,
                                                 drape::print_stability_limit);
-    return drape::list_integrators();
+    return drape::list_integrators(integrators_json);
   } catch (const drape::InputError& e) {
     std::cerr << "drapelab: error: " << e.what() << "\n";
     return drape::exit_input;

@@ -14,12 +14,22 @@
 
 namespace drape {
 
-int list_integrators() {
-  fmt::print("{:<18} {:<9} {:>5} {:>8}  {}\n", "integrator", "family", "order", "adaptive",
+int list_integrators(bool json) {
+  if (json) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& declaration : integrators()) list.push_back(declaration.to_json());
+    fmt::print("{}\n", list.dump(2));
+    return 0;
+  }
+  fmt::print("{:<19} {:<14} {:>5} {:>8}  {}\n", "integrator", "family", "order", "adaptive",
              "description");
-  for (const auto& info : integrators())
-    fmt::print("{:<18} {:<9} {:>5} {:>8}  {}\n", info.name, info.family, info.order,
+  for (const auto& info : integrators()) {
+    fmt::print("{:<19} {:<14} {:>5} {:>8}  {}\n", info.name, info.family, info.order,
                info.adaptive ? "yes" : "no", info.description);
+    for (const SettingKey& key : info.keys)
+      fmt::print("{:<19}   integrator.{}: {} ({})\n", "", key.name, key.description,
+                 key.range_text());
+  }
   const auto tables = integrator_tables();
   if (!tables.empty()) {
     fmt::print("\n{:<18} {:<36} {:>5} {:>8} {:>6}\n", "integrator", "table", "order",

@@ -7,8 +7,9 @@
 
 namespace drape {
 
-/// Prints the integrators and the ARKODE tables with their orders. Returns exit status 0.
-int list_integrators();
+/// Prints the integrators with their own keys, and the ARKODE tables with their orders; with
+/// `json`, the integrators' declarations as a JSON list. Returns exit status 0.
+int list_integrators(bool json);
 /// Prints the arkode-dirk table `name` (e.g. ARKODE_KVAERNO_4_2_3) as an inline tableau:
 /// {"c", "A", "b", "d", "q", "p"}, to study or change it as a user table. Throws InputError
 /// (field `--table`) for a name that is not an arkode-dirk table.

@@ -31,11 +31,14 @@ TEST(GraphColouring, NoSpringJoinsTwoParticlesOfOneColour) {
     std::vector<int> colour_of(63);
     for (std::size_t c = 0; c < colours.size(); ++c)
       for (int i : colours[c]) colour_of[static_cast<std::size_t>(i)] = static_cast<int>(c);
-    for (Eigen::Index e = 0; e < springs.size(); ++e)
+    for (Eigen::Index e = 0; e < springs.size(); ++e) {
       EXPECT_NE(colour_of[springs.first[e]], colour_of[springs.second[e]]) << "spring " << e;
+    }
     // Structural and shear springs make the king's graph: 4 colours suffice and greedy in row
     // order finds them; bending springs (distance 2) add more.
-    if (!bending) EXPECT_EQ(colours.size(), 4u);
+    if (!bending) {
+      EXPECT_EQ(colours.size(), 4u);
+    }
     EXPECT_LE(colours.size(), bending ? 9u : 4u);
   }
 }
