@@ -1,4 +1,4 @@
-// drapelab_bench: the 1/30 s step of issue 13's implicit methods at 32 x 32, 64 x 64 and
+// drapelab_bench: the 1/30 s step of the implicit methods at 32 x 32, 64 x 64 and
 // 128 x 128: implicit-euler (one linearised solve, its default pcg-multigrid) and arkode-dirk
 // with the line-search Newton, SDIRK2 (ARKODE_SDIRK_2_1_2, and Alexander's as a user table) and
 // a third-order ESDIRK (ARKODE_ESDIRK325L2SA_5_2_3), on a free swinging sheet and on the dress
@@ -44,7 +44,7 @@ std::unique_ptr<ClothSystem> sheet_of(int n, double particle_mass, Eigen::Vector
 }
 
 /// The sheet of 0.2 kg: refined, its particles get lighter and gamma^2 k / m, the stiffness S
-/// holds against the mass, grows 4x per refinement (issue 13's scaling benchmark).
+/// holds against the mass, grows 4x per refinement (docs/performance/implicit-step.md).
 std::unique_ptr<ClothSystem> swinging_sheet(int n, Eigen::VectorXd& y) {
   return sheet_of(n, 0.2 / (n * n), y);
 }

@@ -1,4 +1,4 @@
-// ARKODE's implicit stages solved by the line-search Newton (issue #13): the tables keep their
+// ARKODE's implicit stages solved by the line-search Newton: the tables keep their
 // orders, and the swinging sheet runs at 1/30 s with no failure and no halving, at the shipped
 // stiffness and at 100x.
 #include <gtest/gtest.h>
@@ -234,7 +234,7 @@ TEST(LineSearchNonlinearSolver, CountsBacktracksAndSkipsArkodesLinearSolver) {
   EXPECT_EQ(c.to_json().at("line_search_backtracks"), c.line_search_backtracks);
 }
 
-// The line search is the default stage solver of arkode-dirk and arkode-imex (issue #13), with a
+// The line search is the default stage solver of arkode-dirk and arkode-imex, with a
 // bound of 400 iterations a stage; `newton` keeps ARKODE's, with its bound of 10.
 TEST(LineSearchNonlinearSolver, IsTheDefaultOfTheNewtonIntegrators) {
   for (const char* name : {"arkode-dirk", "arkode-imex"}) {
