@@ -63,7 +63,8 @@ void LiveHands::sample(double now, double wanted, HandTrack& track) {
   // froze the run).
   // After frames left out (their curve left the scene), the next one is spaced wider, doubling
   // each time: at the same spacing the same frame would be left out on every turn while the
-  // track held the run at its limit, freezing it for as long as the hand stayed. A gap beyond max_gap starts a new run of samples, which bends nothing.
+  // track held the run at its limit, freezing it for as long as the hand stayed. A gap beyond
+  // max_gap starts a new run of samples, which bends nothing.
   const double spacing =
       std::max(m_margin, lead / 100) * std::ldexp(1.0, std::min(m_refused, 30));
   HandFrame frame;

@@ -1,4 +1,5 @@
-"""The report's figures (analysis/drapeanalysis/plots*.py) on synthetic runs (docs/figures.md): a step where every run diverged stays on the axis and says
+"""The report's figures (analysis/drapeanalysis/plots*.py) on synthetic runs (docs/figures.md):
+a step where every run diverged stays on the axis and says
 so, a diverged run is drawn and named with its stop time, an all-zero metric is not an empty log
 axis, lengths are in mm, step labels do not overlap, and every method gets its own panel."""
 import math

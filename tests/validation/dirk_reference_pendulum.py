@@ -18,7 +18,8 @@ minimiser follows, not a stage solver's accident.
 Usage: dirk_reference_pendulum.py DRAPELAB_BINARY [--roots N]
 With --roots N every stage is also solved from N random starts (velocities offset by 10 m/s
 times a standard normal), and the other roots found are printed with their kind: stages do have
-other roots (saddles about 7-9 m/s away, which starts offset by 1 m/s miss); whether any of them is a minimum too is what the count says.
+other roots (saddles about 7-9 m/s away, which starts offset by 1 m/s miss); whether any of
+them is a minimum too is what the count says.
 """
 import csv
 import json
