@@ -2,7 +2,7 @@
 # Defines UMFPACK_FOUND and the imported target SuiteSparse::UMFPACK (header umfpack.h in
 # /usr/include/suitesparse, library libumfpack). Its dense kernels call BLAS: with Debian's
 # reference BLAS they are slower than Eigen's SparseLU, with OpenBLAS (libopenblas0-serial,
-# which install_dependencies.sh installs) faster (docs/performance.md).
+# which install_dependencies.sh installs) faster (docs/performance/sdirk-step.md).
 find_path(UMFPACK_INCLUDE_DIR umfpack.h PATH_SUFFIXES suitesparse)
 find_library(UMFPACK_LIBRARY umfpack)
 include(FindPackageHandleStandardArgs)

@@ -72,8 +72,8 @@ def work_precision(out_dir, rows, parameters):
             ax.set_xlabel("right-hand-side evaluations" if key == "rhs_evals" else "wall time [s]")
             ax.grid(True, which="both", alpha=0.3)
         axes[r, 0].set_ylabel(ylabel)
-    # Room above the highest bar for the step labels: at the axis' top they crossed a
-    # neighbour's bar for want of a free spot (second browser audit).
+    # Room above the highest bar for the step labels: at the axis' top they would cross a
+    # neighbour's bar for want of a free spot.
     for row_axes in axes:
         if any(ax is labelled_ax for ax in row_axes for labelled_ax, _, _ in labelled):
             low, high = row_axes[0].get_ylim()

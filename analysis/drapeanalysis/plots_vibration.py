@@ -97,8 +97,8 @@ def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",
         ax.set(xlabel="dt [s]", ylabel=ylabel)
         ax.grid(True, which="both", alpha=0.3)
     if not log_y and all(y >= 0 for y in values):
-        # A non-negative metric on a linear axis starts at 0: all zero, matplotlib centred the
-        # axis on 0 and showed negative ticks (second browser audit, docs/known_issues.md).
+        # A non-negative metric on a linear axis starts at 0: all zero, matplotlib would centre
+        # the axis on 0 and show negative ticks.
         axes[0, 0].set_ylim(0, None if any(values) else 1)
     for ax in axes.ravel()[len(panels):]:
         ax.set_visible(False)

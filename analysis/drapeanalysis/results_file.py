@@ -136,8 +136,8 @@ def results_table(directory):
 def check_plan(directory, results):
     """A ValueError when results.json is not of the plan experiment.json holds (its plan_size,
     its runs' ids): `drapelab experiment` writes experiment.json first and results.json last,
-    so one stopped on a changed plan left the last invocation's table, and the report showed
-    the old runs as the experiment (bad-input audit of 2026-11-29). A folder without
+    so one stopped on a changed plan could leave the last invocation's table, and the report
+    would show the old runs as the experiment. A folder without
     experiment.json (a table copied alone) is let be."""
     path = Path(directory) / "experiment.json"
     if not path.exists():

@@ -165,8 +165,8 @@ def place_labels(ax, points, texts, color, half=None, joined=False):
         # The corners sit a cap's half-width further out, so that one beside a bar clears its caps.
         side = gap + (cap if half else 0)
         # Rings of spots, each a label's height further out (the corners further up or down) and
-        # chosen only where every nearer spot overlaps something: a neighbour's bar crossed a label
-        # placed beside it (second browser audit).
+        # chosen only where every nearer spot overlaps something, so that a neighbour's bar never
+        # crosses a label placed beside it.
         spots = []  # (ring, dx, dy)
         for ring, far in enumerate((0.0, height, 2 * height)):
             spots += [(ring, gap + far, -height / 2), (ring, -gap - w - far, -height / 2)]
@@ -213,7 +213,7 @@ def mark_failed(ax, failures, color, index=0, count=1):
 
 def label_log_ticks(ax):
     """Gives each log axis of `ax` at least two labelled ticks: a range within a decade or two
-    showed one label (second browser audit, docs/known_issues.md), so the ticks go to 1, 2 and 5
+    would show one label, so the ticks go to 1, 2 and 5
     times the decades, or to every integer multiple, all labelled (matplotlib itself falls back to
     evenly spaced ticks when even those leave one inside)."""
     for axis, limits in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):

@@ -10,7 +10,8 @@ from .fileio import OutputError, output_folder
 # drapelab's exit status for an output it could not write (README, exit status).
 WRITE_FAILED = 4
 
-# Integrators that solve for the new state (docs/integrators.md); the rest step explicitly.
+# Integrators that solve for the new state (docs/integrators/README.md); the rest step
+# explicitly.
 IMPLICIT = ("implicit-euler", "arkode-dirk", "arkode-imex")
 # Preferred order within each kind: the paper's leap-frog first, then the cheapest implicit one.
 PREFERENCE = ("leapfrog", "symplectic-euler", "arkode-erk", "implicit-euler", "arkode-dirk", "arkode-imex")

@@ -75,7 +75,7 @@ namespace drape {
 /// grad G. All remove the inward normal velocity of a corrected
 /// particle.
 ///
-/// Contact pairing (the implicit integrators' contact set of a step, docs/integrators.md):
+/// Contact pairing (the implicit integrators' contact set of a step, docs/integrators/arkode.md):
 /// after pair_contacts(x), until the next pair_contacts() or unpair_contacts(), each cloth
 /// particle i keeps the contact it had at x_i, linearised there: with g the contact's gap (the
 /// distance |x - p_o| to the object particle o nearest to x_i, or the surface gap) and n its

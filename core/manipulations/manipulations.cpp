@@ -326,7 +326,7 @@ void Manipulator::update_holds(double t, detail::StateEdit& state, bool& changed
       // After a release the hand is still at the particle: it must move away before it can
       // hold again, or every release would be undone at once. The hand itself must move: the
       // cloth moving away from a still hand (an attached particle jumping onto the object)
-      // re-armed it, and a neighbour swinging in was held 2 ms after the attach (fifth audit).
+      // would re-arm it, and a neighbour swinging in would be held 2 ms after the attach.
       const double moved = (motion->position - h.let_go).norm();
       h.armed = distance >= m_params.hold_threshold && !(moved < m_params.hold_threshold);
       continue;

@@ -1,16 +1,16 @@
-// drapelab_bench: the 1/30 s step of issue 13's implicit methods at 32 x 32, 64 x 64 and
+// drapelab_bench: the 1/30 s step of the implicit methods at 32 x 32, 64 x 64 and
 // 128 x 128: implicit-euler (one linearised solve, its default pcg-multigrid) and arkode-dirk
 // with the line-search Newton, SDIRK2 (ARKODE_SDIRK_2_1_2, and Alexander's as a user table) and
 // a third-order ESDIRK (ARKODE_ESDIRK325L2SA_5_2_3), on a free swinging sheet and on the dress
 // form with the smooth contact model; Alexander's SDIRK2 also with looser stage tolerances. See
-// docs/performance.md.
+// docs/performance/implicit-step.md and docs/performance/sdirk-step.md.
 //
 // Each benchmark takes a few steps before timing (the first step holds the one-time setup:
 // patterns, multigrid levels, ARKODE's memory, first touch of the arrays), then times a fixed
 // number, so that a run stays bounded at 128 x 128 and measures a warmed-up solver. The CG
 // iterations of implicit-euler follow the motion (3 to 17 a step on the sheet when measured
 // with the last dv as CG's start), so it times
-// 60 steps, 2 s of motion (docs/performance.md, "Over 60 steps"); an ARKODE step costs seconds.
+// 60 steps, 2 s of motion (docs/performance/implicit-step.md); an ARKODE step costs seconds.
 #include <benchmark/benchmark.h>
 
 #include "experiments/benchmarks/draped_cloth.hpp"
@@ -23,7 +23,8 @@ constexpr double frame = 1.0 / 30.0;
 
 /// An n x n sheet of 0.5 m side with particles of `particle_mass` (k = 50 N/m, draped_cloth's
 /// cloth), horizontal, pinned at the two corners of its first row, no object: released at rest
-/// it falls and swings (the sheet of docs/integrators.md at the benchmarks' resolutions).
+/// it falls and swings (the sheet of docs/integrators/line-search-newton.md at the benchmarks'
+/// resolutions).
 std::unique_ptr<ClothSystem> sheet_of(int n, double particle_mass, Eigen::VectorXd& y) {
   ClothParams p;
   p.rows = p.cols = n;
@@ -43,14 +44,14 @@ std::unique_ptr<ClothSystem> sheet_of(int n, double particle_mass, Eigen::Vector
 }
 
 /// The sheet of 0.2 kg: refined, its particles get lighter and gamma^2 k / m, the stiffness S
-/// holds against the mass, grows 4x per refinement (issue 13's scaling benchmark).
+/// holds against the mass, grows 4x per refinement (docs/performance/implicit-step.md).
 std::unique_ptr<ClothSystem> swinging_sheet(int n, Eigen::VectorXd& y) {
   return sheet_of(n, 0.2 / (n * n), y);
 }
 
 /// The sheet with the particles of the 64 x 64 sheet at every size (0.8 kg at 128 x 128):
 /// gamma^2 k / m is the same at every n, so the solver's scaling shows without the growth of
-/// the system's stiffness (docs/performance.md, "What the growth is").
+/// the system's stiffness (docs/journal/2026-11-27-growth-is-the-cloth.md).
 std::unique_ptr<ClothSystem> sheet_of_equal_particles(int n, Eigen::VectorXd& y) {
   return sheet_of(n, 0.2 / (64 * 64), y);
 }
@@ -76,7 +77,8 @@ struct StepCase {
 // Alexander's two-stage SDIRK (1977, SIAM J. Numer. Anal. 14(6); Hairer and Wanner, Solving
 // ODEs II, table IV.6.5 with gamma = 1 - 1/sqrt(2)): L-stable and stiffly accurate, each stage a
 // backward-Euler-like solve over gamma h = 0.29 h. ARKODE's SDIRK_2_1_2 is another method
-// (A = [1 0; -1 1], docs/integrators.md "Which tables gain energy"), each stage over h.
+// (A = [1 0; -1 1], docs/findings/energy_gaining_tables.md "Which tables gain energy"), each stage
+// over h.
 constexpr const char* alexander_sdirk2 =
     R"({"c": [0.29289321881345254, 1], "A": [[0.29289321881345254, 0],)"
     R"( [0.70710678118654752, 0.29289321881345254]],)"

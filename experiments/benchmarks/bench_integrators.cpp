@@ -2,7 +2,7 @@
 // 64 x 64 and 128 x 128, and the cost of one right-hand side inside each of them. Explicit
 // methods step at 1e-4 s (their cost per step hardly depends on it), implicit ones at 1/30 s
 // (arkode-dirk and arkode-imex also adaptive, up to 1/30 s).
-// See docs/integrators.md.
+// See docs/performance/integrator-step.md.
 #include <benchmark/benchmark.h>
 
 #include "experiments/benchmarks/draped_cloth.hpp"
@@ -44,7 +44,7 @@ void run_steps(benchmark::State& state, const BenchCase& c) {
   state.counters["newton_per_step"] = static_cast<double>(counters.newton_iters) / steps;
   state.counters["linear_per_step"] = static_cast<double>(counters.linear_iters) / steps;
   state.counters["mean_dt"] = method->time() / steps;
-  // Fixed-step ARKODE runs halve a step whose Newton solve fails (docs/integrators.md): a
+  // Fixed-step ARKODE runs halve a step whose Newton solve fails (docs/integrators/arkode.md): a
   // benchmark iteration is then one step of dt covered by several shorter ones.
   state.counters["halvings_per_iteration"] = benchmark::Counter(
       static_cast<double>(counters.step_halvings), benchmark::Counter::kAvgIterations);
@@ -67,7 +67,8 @@ const BenchCase cases[] = {
     {"arkode-imex/pcg-reduced", "arkode-imex", "pcg-reduced", 1.0 / 30.0},
     {"arkode-imex/sparse-direct", "arkode-imex", "sparse-direct", 1.0 / 30.0},
     // At fixed 1/30 s their Newton iterations fail on the draped cloth unless the step is halved
-    // (docs/integrators.md): the same methods with error-controlled steps up to 1/30 s.
+    // (docs/performance/integrator-step.md): the same methods with error-controlled steps up to
+    // 1/30 s.
     {"arkode-dirk/pcg-reduced/adaptive", "arkode-dirk", "pcg-reduced", 1.0 / 30.0, true},
     {"arkode-imex/pcg-reduced/adaptive", "arkode-imex", "pcg-reduced", 1.0 / 30.0, true},
     {"arkode-dirk/pcg-multigrid/adaptive", "arkode-dirk", "pcg-multigrid", 1.0 / 30.0, true},

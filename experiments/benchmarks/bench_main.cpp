@@ -1,5 +1,6 @@
 // drapelab_bench: force evaluation, one leap-frog step and the nearest-object-particle query on
-// the built-in dress form (80 x 32 object particles). Not part of ctest; see docs/performance.md.
+// the built-in dress form (80 x 32 object particles). Not part of ctest; see
+// docs/performance/leapfrog-step.md.
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -2,7 +2,7 @@
 // system S (9-point block pattern, random SPD couplings, tests/support/grid_matrix.hpp): the
 // product by S and one multigrid cycle, and forming the coarse levels. The counter gives the
 // cost per fine block row, so that growth beyond the particle count (cache) shows as a growing
-// `ns_per_row`. See docs/performance.md.
+// `ns_per_row`. See docs/performance/implicit-step.md.
 #include <benchmark/benchmark.h>
 
 #include <functional>

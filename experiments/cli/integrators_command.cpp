@@ -58,8 +58,8 @@ int print_stability_limit(const Scene& scene) {
   const SceneSimulation run(scene);
   const Eigen::VectorXd& y = run.simulation().state();
   const Eigen::Index n3 = y.size() / 2;
-  // A large cloth takes minutes (docs/integrators.md, "Largest stable fixed step"): every 10 s
-  // the products so far go to stderr, so that the wait is visibly work, not a hang.
+  // A large cloth takes minutes (docs/integrators/explicit.md, "Largest stable fixed step"): every
+  // 10 s the products so far go to stderr, so that the wait is visibly work, not a hang.
   const auto start = std::chrono::steady_clock::now();
   auto next_report = start + std::chrono::seconds(10);
   const auto report = [&](long products) {

@@ -1,6 +1,6 @@
 #pragma once
 // `drapelab integrators`: the integrators and ARKODE tables, and one DIRK table's coefficients
-// in the form `integrator.table` accepts inline (docs/integrators.md, "User tables").
+// in the form `integrator.table` accepts inline (docs/integrators/arkode.md, "User tables").
 #include <string>
 
 #include "core/scene/scene.hpp"

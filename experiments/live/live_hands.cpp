@@ -62,9 +62,9 @@ void LiveHands::sample(double now, double wanted, HandTrack& track) {
   // (a frame 4e-17 s after the last, the rounding of now + lead, was left out on every turn and
   // froze the run).
   // After frames left out (their curve left the scene), the next one is spaced wider, doubling
-  // each time: at the same spacing the same frame was left out on every turn while the track
-  // held the run at its limit, which froze it for as long as the hand stayed (bad-input audit of
-  // 2026-11-29). A gap beyond max_gap starts a new run of samples, which bends nothing.
+  // each time: at the same spacing the same frame would be left out on every turn while the
+  // track held the run at its limit, freezing it for as long as the hand stayed. A gap beyond
+  // max_gap starts a new run of samples, which bends nothing.
   const double spacing =
       std::max(m_margin, lead / 100) * std::ldexp(1.0, std::min(m_refused, 30));
   HandFrame frame;

@@ -71,7 +71,7 @@ void SensorBridge::read_connection(int fd, const std::string& name) {
   while (!m_stop) {
     if (!readable(fd)) {
       // One connection is read at a time: a client that connects and sends nothing holds the
-      // others back, which the terminal now says (it said nothing; bad-input audit, 2026-11-29).
+      // others back, which the terminal says, so that the wait is not silent.
       if (!said_waiting && readable(m_listen_fd, 0)) {
         said_waiting = true;
         std::cerr << fmt::format("drapelab live: {}: another sensor connection waits until this "

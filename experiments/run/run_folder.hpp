@@ -21,7 +21,7 @@ std::vector<std::string> run_files_in(const std::filesystem::path& dir);
 void check_run_folder(const std::filesystem::path& dir, bool overwrite);
 /// Throws InputError naming `dir`, --out and the entry when one of the entries `names` of `dir`
 /// (files or whole folders) cannot be removed, so that --overwrite removes all or nothing (a
-/// folder it could not empty used to be found after the earlier files were gone).
+/// folder it cannot empty must be found before the other files are gone).
 void check_removable(const std::filesystem::path& dir, const std::vector<std::string>& names);
 /// For a single run's --out (`run`, `live`): an experiment's folder (its experiment.json) is
 /// refused, even with --overwrite: the run's files beside it would make the experiment refuse

@@ -27,7 +27,7 @@ nlohmann::json events_json(const Manipulator& manipulator, const Cloth& cloth) {
 // E rising above E(0) by more than a stable step's energy error is energy the numerics put in,
 // an unstable table or the paper's penetration correction (docs/known_issues.md). 1e-3 of
 // E(0) is far above leap-frog's bounded error and below the 3 % of the drape scene's
-// energy-gaining tables (docs/integrators.md).
+// energy-gaining tables (docs/integrators/tables-at-large-steps.md).
 constexpr double undriven_rise_warning = 1e-3;
 
 nlohmann::json warnings_of(const SceneSimulation& run, double rise_rel) {

@@ -33,9 +33,9 @@ void check_experiment_folder(const std::filesystem::path& dir, const std::string
 /// first: the start of `--overwrite`.
 void clear_experiment_folder(const std::filesystem::path& dir);
 /// Removes the results table of an earlier invocation (results.json, results.csv, summary.csv)
-/// before this one runs: stopped before it writes its own, it left the last one's beside a
-/// changed plan, and the report showed those runs as the experiment's (bad-input audit of
-/// 2026-11-29). Throws std::filesystem::filesystem_error when one cannot be removed.
+/// before this one runs, so that one stopped before it writes its own cannot leave the last
+/// one's beside a changed plan, which the report would show as the experiment's. Throws
+/// std::filesystem::filesystem_error when one cannot be removed.
 void remove_results_table(const std::filesystem::path& dir);
 
 }  // namespace drape

@@ -81,9 +81,9 @@ std::string header_difference(const nlohmann::json& source, const nlohmann::json
 }
 
 // The first field in which two results of one run differ, or "": the machine, the build and the
-// wall time may (a run repeated elsewhere), the outcome may not. Two folders with different
-// results of one run (overlapping shards, an edited result.json) were merged by keeping the first
-// without a word (bad-input audit of 2026-11-29).
+// wall time may (a run repeated elsewhere), the outcome may not: two folders with different
+// results of one run (overlapping shards, an edited result.json) are refused, not merged by
+// keeping the first without a word.
 std::string result_difference(const nlohmann::json& a, const nlohmann::json& b) {
   static const std::set<std::string> may_differ = {
       "wall_seconds", "date",          "machine.hostname", "machine.cpu",     "machine.cores",
@@ -125,7 +125,7 @@ std::vector<std::string> merge_results(const fs::path& out_dir, const std::vecto
   const nlohmann::json header = read_header(out_dir);
   const std::vector<std::string> ids = plan_ids(header);
   // Why a source's copy of a run was not taken (a damaged result.json): said with the run when
-  // no source gives it, where a damaged shard read as one not yet run (bad-input audit).
+  // no source gives it, so that a damaged shard does not read as one not yet run.
   std::map<std::string, std::vector<std::string>> source_problems;
   for (const fs::path& source : sources) {
     if (fs::equivalent(source, out_dir)) continue;

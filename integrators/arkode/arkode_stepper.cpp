@@ -17,7 +17,7 @@ using detail::view;
 namespace {
 
 // First step of an adaptive run without integrator.dt: ARKODE's own estimate was 6e-12 s on a
-// spring chain (docs/integrators.md), far below any cloth time scale.
+// spring chain (docs/findings/energy_gaining_tables.md), far below any cloth time scale.
 constexpr double default_initial_step = 1e-4;
 // GMRES needs few iterations with the reduced-system preconditioner (1 to 3 on a hanging
 // cloth; compressed springs, whose definite Jacobian differs most from the exact one, need

@@ -14,7 +14,8 @@ namespace drape {
 /// arkode-erk, arkode-dirk and arkode-imex: ARKODE's additive Runge-Kutta stepper ARKStep
 /// (Kennedy and Carpenter 2003, Appl. Numer. Math. 44; Reynolds et al. 2023, ACM TOMS 49) on
 /// y' = f_E(t, y) + f_I(t, y), stage i and step
-///   z_i = y_n + h sum_{j<i} A^E_ij f_E(t_n + c^E_j h, z_j) + h sum_{j<=i} A^I_ij f_I(t_n + c^I_j h, z_j)
+///   z_i = y_n + h sum_{j<i} A^E_ij f_E(t_n + c^E_j h, z_j) + h sum_{j<=i} A^I_ij f_I(t_n + c^I_j
+/// h, z_j)
 ///   y_{n+1} = y_n + h sum_i (b^E_i f_E(t_n + c^E_i h, z_i) + b^I_i f_I(t_n + c^I_i h, z_i)).
 /// arkode-erk: f_E = y', no f_I (ARKStep's explicit mode, right for every table, unlike ERKStep
 /// 6.4.1). arkode-dirk: f_I = y', no f_E. arkode-imex: f_I = [v; M^-1 F_springs] (stiff),
@@ -29,7 +30,7 @@ namespace drape {
 /// particle keeps the contact of the step start (its nearest object particle, or the surface),
 /// linearised there, paired again after every accepted step. A switch of the nearest object
 /// particle (or of the surface's piece) between Newton iterates made the collision force jump
-/// and Newton cycle (docs/integrators.md). arkode-erk and arkode-imex with the collision
+/// and Newton cycle (docs/integrators/arkode.md). arkode-erk and arkode-imex with the collision
 /// explicit (its default split) evaluate the unpaired model.
 class ArkodeStepper final : public Integrator {
  public:

@@ -1,6 +1,6 @@
 #pragma once
 // A user's own diagonally implicit Butcher table, given inline as `integrator.table` of
-// arkode-dirk (docs/integrators.md, "User tables"): {"c": [...], "A": [[...]], "b": [...],
+// arkode-dirk (docs/integrators/arkode.md, "User tables"): {"c": [...], "A": [[...]], "b": [...],
 // optional "d" (embedding), "q" (order), "p" (embedding order)}, checked for consistency and
 // handed to ARKODE through ARKodeButcherTable_Create.
 #include <nlohmann/json.hpp>

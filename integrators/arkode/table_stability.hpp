@@ -1,7 +1,7 @@
 #pragma once
 // Linear, internal and nonlinear stability measures of a diagonally implicit Butcher tableau,
 // to compare the ARKODE tables that gain energy on the stiff swinging sheet at 1/30 s with those
-// that settle (docs/integrators.md, "Which tables gain energy at large steps").
+// that settle (docs/findings/energy_gaining_tables.md, "Which tables gain energy at large steps").
 #include <complex>
 #include <vector>
 

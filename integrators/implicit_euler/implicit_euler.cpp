@@ -31,7 +31,7 @@ double ImplicitEuler::step(double t_stop) {
 // The interval as one backward-Euler step or, when its stage solve fails, as two halves, each
 // halved again up to max_step_halvings levels: the rule of ARKODE's fixed steps
 // (arkode_stepper.cpp, cover_fixed), so that a converged implicit-euler and a one-stage DIRK
-// table meet a hard step alike (docs/integrators.md, "Halving a failed fixed step").
+// table meet a hard step alike (docs/integrators/arkode.md, "Fixed steps that fail are halved").
 void ImplicitEuler::cover_converged(double t_start, double t_end, int halvings_left) {
   check_attempts(m_options.max_steps);
   ++m_counters.attempts;

@@ -22,7 +22,7 @@ namespace drape {
 /// z = y_n + h f(t_{n+1}, z) minimised by the line-search Newton of the ARKODE stages
 /// (line_search_newton.hpp) until its update is within ARKODE's test (weights
 /// 1 / (rtol |y_n| + atol), tolerance 0.1), which separates linearisation error from backward
-/// Euler's damping (docs/integrators.md).
+/// Euler's damping (docs/integrators/implicit-euler.md).
 class ImplicitEuler final : public Integrator {
  public:
   /// Reads dt, linear_solver, linear_tolerance and max_linear_iters from `options`.

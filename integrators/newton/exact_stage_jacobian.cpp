@@ -9,7 +9,8 @@ ExactStageJacobian::ExactStageJacobian(const ClothSystem& system, ForceSplit spl
   // Iterative refinement (UMFPACK's default, up to two steps) costs more solves and residuals
   // a direction; the line search checks each direction's descent and the stage's convergence
   // test its result, so a direction to the factorisation's own accuracy is enough (the 64 x 64
-  // sheet's 12 SDIRK2 steps took the same iterations without it: docs/performance.md).
+  // sheet's 12 SDIRK2 steps took the same iterations without it:
+  // docs/journal/2026-11-24-sdirk2-step-cost.md).
   m_lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
 }
 

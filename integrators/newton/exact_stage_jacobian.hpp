@@ -1,7 +1,7 @@
 #pragma once
 // The exact Jacobian of an implicit stage's velocity equation, factorised: Newton's local,
-// quadratically convergent direction for LineSearchNewton (docs/integrators.md, "Stages as
-// minimisation").
+// quadratically convergent direction for LineSearchNewton (docs/integrators/line-search-newton.md,
+// "Stages as minimisation").
 //
 // The stage residual g(v) = M (v - a_v) - gamma F(a_x + gamma v, v) (incremental_potential.hpp)
 // has the Jacobian A = M - gamma D - gamma^2 K with the exact K, including the compressed
@@ -9,9 +9,9 @@
 // direction u turns with x): A is neither symmetric nor definite. The definite S that the line
 // search needs to descend drops both, and there the iteration converges only linearly (rates
 // 0.6-0.9 on the swinging sheet at 1/30 s; at 100x stiffness and 1/30 s the missing damping term
-// made it cycle). A is factorised by sparse LU on the free particles (fixed rows: M I): SuiteSparse's
-// UMFPACK (multifrontal, dense kernels in BLAS), 1.7x faster than Eigen's SparseLU on the 64 x 64
-// sheet's SDIRK2 step with OpenBLAS under it (docs/performance.md, "Implicit steps at 1/30 s").
+// made it cycle). A is factorised by sparse LU on the free particles (fixed rows: M I):
+// SuiteSparse's UMFPACK (multifrontal, dense kernels in BLAS), 1.7x faster than Eigen's SparseLU on
+// the 64 x 64 sheet's SDIRK2 step with OpenBLAS under it (docs/performance/sdirk-step.md).
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 #include <Eigen/UmfPackSupport>

@@ -13,7 +13,7 @@
 // Forming the coarse values is one pass through a list built once: each stored coarse block (on
 // or right of the diagonal; A and every A_c are symmetric and stored once,
 // symmetric_block_matrix.hpp) sums its weighted fine blocks (a gather, written once;
-// docs/performance.md, "Forming the coarse grids").
+// docs/journal/2026-11-27-forming-coarse-grids.md).
 //
 // The cycle smooths with one forward block Gauss-Seidel sweep before the coarse correction and
 // one backward sweep after it, and solves the coarsest level (at most 16 nodes) by a dense
@@ -32,10 +32,10 @@
 // restriction to add up to more than 2 (Trottenberg, Oosterlee and Schuller 2001, "Multigrid",
 // the rule m_P + m_R > 2m; bilinear P and its transpose are of order 2 each). The piecewise-
 // constant aggregation this replaced (order 1 each) fails that rule and weakened with every
-// grid (docs/performance.md, "Geometric multigrid"). On Poisson-like matrices the bilinear
+// grid (docs/journal/2026-11-25-geometric-multigrid.md). On Poisson-like matrices the bilinear
 // cycle's convergence does not depend on the number of grids (condition number 1.96 to 1.99 on
 // 3 and 4 grids); on the hanging sheet, whose coefficients vary strongly, CG's iterations
-// still grow with the grid (docs/performance.md).
+// still grow with the grid (docs/performance/implicit-step.md).
 #include <Eigen/Cholesky>
 #include <vector>
 

@@ -1,7 +1,7 @@
 #pragma once
-// The incremental potential of one implicit stage of the cloth ODE (docs/integrators.md,
-// "Stages as minimisation"; Gast et al. 2015, "Optimization integrator for large time steps",
-// IEEE TVCG 21(10)).
+// The incremental potential of one implicit stage of the cloth ODE
+// (docs/integrators/line-search-newton.md, "Stages as minimisation"; Gast et al. 2015,
+// "Optimization integrator for large time steps", IEEE TVCG 21(10)).
 //
 // An implicit Runge-Kutta stage solves z = a + gamma f_I(t, z), a the stage's known part (in
 // ARKODE's correction form a = zpred + sdata). With z = [x; v] and f_I = [v; M^-1 F] on the

@@ -17,7 +17,7 @@ constexpr int max_halvings = 30;
 constexpr double round_off = 1e3 * std::numeric_limits<double>::epsilon();
 // The first iteration's and the largest relative residual of the Hessian solve. Caps of 0.5 and
 // 0.1 (Eisenstat and Walker use 0.9) cost step halvings on the swinging sheet and the drape
-// scenes (docs/integrators.md, "Cost of a Newton iteration").
+// scenes (docs/journal/2026-11-25-newton-iteration-cost.md).
 constexpr double max_forcing = 1e-2;
 // The Levenberg-Marquardt shift of the exact Jacobian, in units of M (More 1978, "The
 // Levenberg-Marquardt algorithm: implementation and theory"; Nocedal and Wright 2006, section
@@ -36,7 +36,7 @@ constexpr double shift_decay = 3.0;
 // local-phase systems of Alexander's SDIRK2 on the 64 x 64 sheet at 1/30 s converge in 3-15
 // iterations, a few near a buckling point take 70 to over 200; bounds of 15 and 20 kept the
 // LU's Newton path (9 iterations a step), 30 and 200 lengthened it (27 and 20), 10 factorised
-// more often (docs/performance.md, "The exact direction by BiCGSTAB").
+// more often (docs/journal/2026-11-28-bicgstab-exact-direction.md).
 constexpr int max_krylov_iterations = 20;
 
 // The forcing term of an inexact Newton iteration (Eisenstat and Walker 1996, SIAM J. Sci.
@@ -70,7 +70,8 @@ LineSearchNewton::LineSearchNewton(const ClothSystem& system, ForceSplit split,
       m_exact(system, split),
       m_exact_solve(exact_solve),
       // S's preconditioner from the last global-phase iterate: A differs from S by the terms S
-      // drops, small next to M where gamma h is (docs/integrators.md, "Newton direction").
+      // drops, small next to M where gamma h is (docs/integrators/line-search-newton.md, "Newton
+      // direction").
       m_precondition([this](const Eigen::VectorXd& r, Eigen::VectorXd& out) {
         m_solver.precondition(r, out);
       }) {}
@@ -104,7 +105,7 @@ StageSolve LineSearchNewton::solve(double t, double gamma, ConstVecRef a, VecRef
     // BiCGSTAB's local-phase solves stop at max_forcing, not at Eisenstat and Walker's term,
     // which falls with |g|^2 to 1e-3 and below there: the Newton path stayed the same on the
     // 64 x 64 sheet (9 its a step) and within 1.4 % on the drape scene for 7-37 % fewer Krylov
-    // iterations (docs/performance.md, "BiCGSTAB to the forcing cap"). The LU ignores it.
+    // iterations (docs/journal/2026-11-28-bicgstab-exact-direction.md). The LU ignores it.
     if (local)
       exact = shifted_exact_direction(z, gamma, std::max(max_forcing, m_solver.tolerance()), shift,
                                       slope, result);

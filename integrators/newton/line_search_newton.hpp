@@ -1,23 +1,23 @@
 #pragma once
 // Newton's method on the incremental potential of an implicit stage, globalised by a
-// backtracking line search (docs/integrators.md, "Stages as minimisation"; Gast et al. 2015;
-// Nocedal and Wright 2006, algorithm 3.1; ipc-toolkit and IPC use the same globalisation).
-// Each iteration freezes E_k at the iterate, takes the Newton direction d = -S^-1 g of the
-// definite Hessian S (descent, S positive definite; CG solves S only to Eisenstat and Walker's
-// forcing term, an inexact Newton, as any CG iterate descends) and halves the step until Armijo's
-// condition E_k(v + alpha d) <= E_k(v) + 1e-4 alpha g.d holds. Once a full step was accepted,
-// the exact stage Jacobian's direction (ExactStageJacobian) replaces d: quadratic convergence
-// near the solution, where S alone converged linearly or, at 100x stiffness, cycled. Where A
-// is indefinite (compressed springs, the bending-free sheet buckling) its direction need not
-// descend; there A + shift M is factorised instead, the shift of Levenberg and Marquardt grown
+// backtracking line search (docs/integrators/line-search-newton.md, "Stages as minimisation"; Gast
+// et al. 2015; Nocedal and Wright 2006, algorithm 3.1; ipc-toolkit and IPC use the same
+// globalisation). Each iteration freezes E_k at the iterate, takes the Newton direction d = -S^-1 g
+// of the definite Hessian S (descent, S positive definite; CG solves S only to Eisenstat and
+// Walker's forcing term, an inexact Newton, as any CG iterate descends) and halves the step until
+// Armijo's condition E_k(v + alpha d) <= E_k(v) + 1e-4 alpha g.d holds. Once a full step was
+// accepted, the exact stage Jacobian's direction (ExactStageJacobian) replaces d: quadratic
+// convergence near the solution, where S alone converged linearly or, at 100x stiffness, cycled.
+// Where A is indefinite (compressed springs, the bending-free sheet buckling) its direction need
+// not descend; there A + shift M is factorised instead, the shift of Levenberg and Marquardt grown
 // until the direction descends (a trust-region step that follows A's negative curvature, where
-// S treats it as zero curvature and creeps: docs/integrators.md, "What the failing stages look
-// like"). The local phase's systems are factorised (sparse LU) or, with ExactSolve::bicgstab,
-// solved by BiCGSTAB preconditioned by S's preconditioner to the cap of CG's forcing term,
-// the LU taking over where BiCGSTAB does not converge. The stage is solved when the update's
-// weighted RMS norm (ARKODE's error weights) times rate / (1 - rate), the error it leaves at the
-// observed rate, is at most `tolerance` (ARKODE's test, arkStep_NlsConvTest, with that factor
-// for min(rate, 1)).
+// S treats it as zero curvature and creeps: docs/journal/2026-11-25-failing-stages-trace.md, "What
+// the failing stages look like"). The local phase's systems are factorised (sparse LU) or, with
+// ExactSolve::bicgstab, solved by BiCGSTAB preconditioned by S's preconditioner to the cap of CG's
+// forcing term, the LU taking over where BiCGSTAB does not converge. The stage is solved when the
+// update's weighted RMS norm (ARKODE's error weights) times rate / (1 - rate), the error it leaves
+// at the observed rate, is at most `tolerance` (ARKODE's test, arkStep_NlsConvTest, with that
+// factor for min(rate, 1)).
 #include <Eigen/Core>
 #include <optional>
 #include <string>

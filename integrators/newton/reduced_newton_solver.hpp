@@ -42,8 +42,8 @@ enum class CgStart {
   /// two steps' dv): the Galerkin projection of S z_v = b onto their span, which minimises the
   /// error's S-norm over it, so the start is never worse than 0 or than the last dv alone in
   /// that norm (Fischer 1998, "Projection techniques for iterative solution of Ax = b with
-  /// successive right-hand sides", Comput. Methods Appl. Mech. Engrg. 163; docs/performance.md,
-  /// "Starting CG from the last two steps").
+  /// successive right-hand sides", Comput. Methods Appl. Mech. Engrg. 163;
+  /// docs/journal/2026-11-27-cg-start-last-two-steps.md, "Starting CG from the last two steps").
   projected,
 };
 
@@ -95,7 +95,7 @@ class ReducedNewtonSolver {
   /// gamma^2 K_ii + sum of C_e over the springs at i, or M on a fixed particle; S_ij = -sum of C_e
   /// over the springs on (i, j) when both ends are free, 0 otherwise (C_e = gamma D_e + gamma^2
   /// K_e). Each block is written once, gathered from the spring blocks it sums, so S streams out
-  /// in memory order (docs/performance.md, "Assembling S row by row").
+  /// in memory order (docs/journal/2026-11-27-assembling-s.md).
   template <class FinishRow>
   void assemble_blocks(FinishRow finish_row);
   /// Sets m_matrix's pattern and the spring lists of its blocks; returns each particle's spring

@@ -13,7 +13,7 @@ namespace {
 // product, and each sweep reads a row's blocks twice (once where it leads, again up to
 // m_upper_reach rows later, then from the cache), a pattern the hardware's stream prefetcher
 // does not follow. Once the blocks outgrew the cache each row then waited on memory
-// (docs/performance.md, "Prefetching the sweeps"). Eight rows are about 2 KB of packed blocks
+// (docs/journal/2026-11-26-prefetching-sweeps.md). Eight rows are about 2 KB of packed blocks
 // in flight; 2 to 24 rows measured alike with full double blocks.
 constexpr int rows_ahead = 8;
 constexpr int cache_line = 64;

@@ -7,17 +7,19 @@
 // about 240 bytes a row of the cloth's 9-point pattern instead of the 648 of every block in full.
 // The product and the Gauss-Seidel sweeps read each stored block once and apply it to both of
 // its positions, (i, j) and (j, i), which is the same matrix; at 128 x 128 the blocks outgrow the
-// cache and a CG iteration's cost is the bytes it streams (docs/performance.md, "S stored once").
+// cache and a CG iteration's cost is the bytes it streams
+// (docs/journal/2026-11-28-s-stored-once.md).
 //
 // The Gauss-Seidel sweeps read the same blocks, in double, with the symmetric part of each
 // diagonal block's inverse (so that the cycle is exactly symmetric, which CG needs). Until S was
-// stored once they read a single-precision copy (docs/performance.md, "Single-precision
-// sweeps"); on the packed blocks the conversions cost more than the bytes the copy saved, and
-// the copy was one more array to write a step ("S stored once").
+// stored once they read a single-precision copy
+// (docs/journal/2026-11-27-single-precision-sweeps.md, "Single-precision sweeps"); on the packed
+// blocks the conversions cost more than the bytes the copy saved, and the copy was one more array
+// to write a step ("S stored once").
 //
 // A row is finished (its diagonal inverted) by finish_row() as soon as its blocks hold their
 // values, so that an assembly writing row by row does it while the row is in cache instead of in
-// one more pass over the matrix (docs/performance.md, "Assembling S row by row").
+// one more pass over the matrix (docs/journal/2026-11-27-assembling-s.md).
 #include <vector>
 
 #include "core/model/state.hpp"

@@ -1,5 +1,5 @@
-"""The report's figures (analysis/drapeanalysis/plots*.py) on synthetic runs, against the second
-browser audit (docs/known_issues.md): a step where every run diverged stays on the axis and says
+"""The report's figures (analysis/drapeanalysis/plots*.py) on synthetic runs (docs/figures.md):
+a step where every run diverged stays on the axis and says
 so, a diverged run is drawn and named with its stop time, an all-zero metric is not an empty log
 axis, lengths are in mm, step labels do not overlap, and every method gets its own panel."""
 import math
@@ -83,7 +83,7 @@ class StepFigureTest(FigureTest):
         self.assertEqual(ax.get_yscale(), "linear")
         self.assertIn("no contact switches in any run", texts(fig))
         self.assertEqual(ax.get_ylabel(), "contact switches [1/(particle s)]")  # not a length
-        # The axis starts at 0: centred on 0 it showed negative rates (second browser audit).
+        # The axis starts at 0: centred on 0 it would show negative rates.
         fig.canvas.draw()
         self.assertEqual(ax.get_ylim()[0], 0.0)
         low, high = ax.get_ylim()
@@ -136,7 +136,7 @@ class WorkPrecisionTest(FigureTest):
     def test_no_step_label_crosses_an_error_bar(self):
         # The 0.01 s point's bar spans 3 to 16 mm beside the 0.0333 s point near the panel's top
         # (the integrator comparison's wall-time panel): every spot next to the 0.0333 s label
-        # crossed it or left the axes, so the label crossed the bar (second browser audit).
+        # crosses it or leaves the axes, so the label must go further out.
         # (right-hand sides, error of seed 1, of seed 2): Student-t bars of 8-11 and 3-16 mm.
         spread = {0.0333333: (80, 0.00938, 0.00962), 0.01: (165, 0.00899, 0.01001)}
         rows = [dict(row, rhs_evals=spread[row["integrator.dt"]][0],

@@ -83,8 +83,8 @@ def replaced(path, make):
 
 
 class InputNotARegularFileTest(ReportTestCase):
-    """Defect 1: every input the report opens, a named pipe in its place, used to block the
-    report for ever; a folder in its place was a traceback."""
+    """Every input the report opens, with a named pipe in its place, would block the report
+    for ever, and a folder in its place would be a traceback: both are named."""
 
     def test_a_named_pipe_in_place_of_any_input_is_refused(self):
         # The optional inputs too: the event trace and the hands.
@@ -153,8 +153,7 @@ class FailedWriteTest(ReportTestCase):
     def test_a_read_only_experiment_folder(self):
         self.directory.chmod(0o555)
         try:
-            # Bad input, named before any work (it was exit 4 from the first write until
-            # 2026-11-28).
+            # Bad input, named before any work (not exit 4 from the first write).
             self.report(status=2, message=f"{self.directory}: cannot be written (Permission denied): "
                                           "the report writes its files there")
         finally:

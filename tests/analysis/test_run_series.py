@@ -55,7 +55,7 @@ class RunSeriesEndTest(runfolder.RunFolderTest):
 
     def test_the_event_trace_reaches_its_last_window_end(self):
         # Events at 0.1 and 0.2 s, windows of 0.05 s sampled every 0.01 s: the last window ends at
-        # 0.25 s. Cut after 0.15 s (the bad-input audit cut every array alike) it is refused.
+        # 0.25 s. Cut after 0.15 s (every array cut alike) it is refused.
         events = [{"type": "hold", "t": 0.1}, {"type": "release", "t": 0.2}]
         t = np.concatenate([np.arange(0.0, 0.051, 0.01), np.arange(0.1, 0.151, 0.01), np.arange(0.2, 0.251, 0.01)])
         output = {"event_trace_interval": 0.01, "event_trace_window": 0.05}

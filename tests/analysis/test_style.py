@@ -108,7 +108,7 @@ class PlaceLabelsTest(unittest.TestCase):
 
     def test_a_label_keeps_clear_of_the_caps(self):
         # Points on either side push the middle label above or below its bar; placed at the
-        # bar's width it touched a cap (second browser audit). It must stay a few pixels off
+        # bar's width it would touch a cap. It must stay a few pixels off
         # each cap, CAP_SIZE points either side of the bar at its ends.
         fig, ax = bar_axes()
         xs, ys, half = [6.0, 10.0, 16.0], [1e-2, 1e-2, 1e-2], [0.0, 5e-3, 0.0]

@@ -1,8 +1,9 @@
 #pragma once
-// The issue #13 sheet: 12 x 12, horizontal, pinned at the two corners of its first row, no
-// object, with the drape scene's spacing, mass, stiffness and damping
+// The swinging sheet (docs/integrators/line-search-newton.md): 12 x 12, horizontal, pinned at
+// the two corners of its first row, no object, with the drape scene's spacing, mass, stiffness and damping
 // (experiments/scenes/drape_dress_form.json) times `stiffness_factor`. Released at rest it falls
-// and swings: at 1/30 s its implicit stages are the hard ones of docs/integrators.md.
+// and swings: at 1/30 s its implicit stages are the hard ones of
+// docs/integrators/line-search-newton.md.
 #include <memory>
 
 #include "core/model/cloth_system.hpp"

@@ -1,12 +1,13 @@
 """drapelab's DIRK steps against an independent implementation on one stiff spring pendulum.
 
-The model problem of docs/integrators.md ("One spring is enough"): experiments/scenes/
-swinging_chain.json with two particles, the first pinned, released horizontal at rest length
+The model problem of docs/findings/energy_gaining_tables.md ("One spring is enough"):
+experiments/scenes/swinging_chain.json with two particles, the first pinned, released horizontal at rest length
 (h omega about 30 at 1/30 s, the cloth's spring, mass and damping). Here every stage of a
 diagonally implicit Runge-Kutta table is solved by SciPy's MINPACK hybrid method (fsolve) from
 the stage's known part, in a dozen lines that share nothing with drapelab but the equations of
 docs/model.md; drapelab solves them with ARKODE and its line-search Newton on the incremental
-potential, the table given inline (`integrator.table`, docs/integrators.md "User tables"). The
+potential, the table given inline (`integrator.table`,
+docs/integrators/arkode.md "User tables"). The
 energy after every 1/30 s step must agree to 1e-6 of the energy the swing releases, for a table
 that settles (KVAERNO_4_2_3), one that gains energy (SDIRK_5_3_4) and one that diverges
 (ESDIRK437L2SA). Both follow the stage root from the predictor, and that root is asserted to be
@@ -17,8 +18,8 @@ minimiser follows, not a stage solver's accident.
 Usage: dirk_reference_pendulum.py DRAPELAB_BINARY [--roots N]
 With --roots N every stage is also solved from N random starts (velocities offset by 10 m/s
 times a standard normal), and the other roots found are printed with their kind: stages do have
-other roots (an independent audit of 2026-11-28 found saddles about 7-9 m/s away, which starts
-offset by 1 m/s had missed); whether any of them is a minimum too is what the count says.
+other roots (saddles about 7-9 m/s away, which starts offset by 1 m/s miss); whether any of
+them is a minimum too is what the count says.
 """
 import csv
 import json

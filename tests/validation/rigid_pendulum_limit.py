@@ -1,7 +1,7 @@
 """The stiff spring pendulum's energy gain at 1/30 s is its rigid limit's: a test and a measurement.
 
-docs/integrators.md ("One spring is enough", "And a spring that turns fast"): on one damped spring
-pendulum (experiments/scenes/swinging_chain.json with two particles, h omega about 30 at 1/30 s)
+docs/findings/energy_gaining_tables.md ("One spring is enough", "And a spring that turns fast"):
+on one damped spring pendulum (experiments/scenes/swinging_chain.json with two particles, h omega about 30 at 1/30 s)
 five DIRK tables gain energy when the spring turns by about a radian a step, and none when it
 turns by 0.1 rad. Here every arkode-dirk table (its coefficients from `drapelab integrators
 --table`) also steps the pendulum's stiff limit, a rigid rod of the same length: the index-3
@@ -23,7 +23,8 @@ diverges (exit 3); at 2 m there are none in either. Prints both energies for eve
 
 Usage: rigid_pendulum_limit.py DRAPELAB_BINARY [--lengths L ...]
 With --lengths the comparison runs at those lengths instead and only prints the tables that gain
-(a measurement, docs/integrators.md: at 0.002 and 0.2 m the two models differ).
+(a measurement,
+docs/findings/energy_gaining_tables.md: at 0.002 and 0.2 m the two models differ).
 """
 import csv
 import json

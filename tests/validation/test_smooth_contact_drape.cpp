@@ -108,8 +108,9 @@ TEST(SmoothContactDrape, PinnedClothComesToRestOnTheDressFormWithNoParticleInsid
   source.erase("output");
   const Settled paper = settle(source);  // the shipped `particle` model with leap-frog
   source["collision"]["model"] = "smooth";
-  // arkode-dirk on its defaults (table and stage solver) at 1/30 s, issue 13's done-when scene:
-  // the default table must settle in contact at this step (docs/integrators.md, "Default table").
+  // arkode-dirk on its defaults (table and stage solver) at 1/30 s, one step a Kinect frame:
+  // the default table must settle in contact at this step
+  // (docs/integrators/tables-at-large-steps.md, "Default table").
   for (const auto& integrator : {nlohmann::json{{"name", "leapfrog"}, {"dt", 2e-4}},
                                  nlohmann::json{{"name", "implicit-euler"}, {"dt", 1.0 / 30}},
                                  nlohmann::json{{"name", "arkode-dirk"}, {"dt", 1.0 / 30}}}) {

@@ -1,11 +1,11 @@
 // Which DIRK tables gain energy at 1/30 s, measured on the smallest cloth that shows it: a chain
 // of 12 particles on bending-free springs, pinned at one end and released horizontal
-// (experiments/scenes/swinging_chain.json; docs/integrators.md, "One spring is enough"). Every
-// ARKODE DIRK table runs it for 6 s with its stages solved by the line-search Newton. A table
-// settles when the chain ends below the energy it started with (those that do end within 1e-6 J
-// of each other, having lost the 7.8e-4 J the swing released); the others end 29 to 2000 times
-// that above it, or diverge. The tables that settle are exactly those with |A_I^-1|_inf below
-// 100 (table_stability.hpp): the measured counterpart of
+// (experiments/scenes/swinging_chain.json; docs/findings/energy_gaining_tables.md, "One spring is
+// enough"). Every ARKODE DIRK table runs it for 6 s with its stages solved by the line-search
+// Newton. A table settles when the chain ends below the energy it started with (those that do end
+// within 1e-6 J of each other, having lost the 7.8e-4 J the swing released); the others end 29 to
+// 2000 times that above it, or diverge. The tables that settle are exactly those with |A_I^-1|_inf
+// below 100 (table_stability.hpp): the measured counterpart of
 // TableStability.ImplicitInverseNormSeparatesTheTablesThatGainEnergy, whose list of tables comes
 // from the sheet.
 #include <gtest/gtest.h>

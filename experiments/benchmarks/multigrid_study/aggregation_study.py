@@ -14,7 +14,7 @@ BM_ImplicitStep/sheet/implicit-euler (dump_reduced_systems.patch), with two prec
 
 CG stops at |b - S z| <= 1e-3 |b| as implicit-euler's does, from zero and from the start the
 solver used (the projection onto the last two steps' solutions, dumped with the system).
-Usage: aggregation_study.py DUMP... (docs/performance.md, "Smoothed aggregation").
+Usage: aggregation_study.py DUMP... (docs/journal/2026-11-27-smoothed-aggregation.md).
 """
 import sys
 

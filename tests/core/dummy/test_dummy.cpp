@@ -235,7 +235,7 @@ TEST(Dummy, NearestWithinRejectsNonPositiveRadius) {
 
 TEST(Dummy, NonFinitePointsHaveNoContact) {
   // A diverging run hands NaN and inf to every query before its step ends: none may become an
-  // array index (a NaN angle used to pick a radius column).
+  // array index (a NaN angle would pick a radius column).
   const Dummy dummy(irregular_sections(50, 20, 12));
   const double nan = std::nan(""), inf = INFINITY;
   for (const Vec3& p : {Vec3(nan, 1.2, 0.0), Vec3(0.0, nan, 0.0), Vec3(0.0, 1.2, nan),

@@ -36,7 +36,7 @@ void expect_input_error(const json& spec, const std::string& field, const fs::pa
 }
 
 // Heights a rounding error apart pass the spec's checks and become equal when resampled: still
-// an input error naming the dummy (bad-input audit, 2026-11-28; it was exit 1, "failed").
+// an input error naming the dummy, not exit 1, "failed".
 TEST(DummySources, SectionsEqualAfterResamplingAreAnInputError) {
   try {
     make_dummy({{"builtin", "cylinder"}, {"radius", 0.1}, {"y_top", 1.0}, {"y_bottom", 0.9999999999999999}},

@@ -314,8 +314,8 @@ TEST_F(MeshSections, BadInputNamesTheSceneFieldAndTheMeshFile) {
   expect_input_error(with("builtin", "sphere"), "dummy.mesh", "conflicts with dummy.builtin");
 }
 
-// tinyobjloader does not skip a UTF-8 byte order mark: it hid the first vertex, and every face
-// then pointed at the next one (a bad-input audit of 2026-11-28).
+// tinyobjloader does not skip a UTF-8 byte order mark: it would hide the first vertex, and every
+// face then point at the next one.
 TEST_F(MeshSections, AByteOrderMarkChangesNothing) {
   const std::string box = prism_obj(regular_polygon(6, 0.2, {0.0, 0.0}), 0.0,
                                     regular_polygon(6, 0.2, {0.0, 0.0}), 1.0, true);

@@ -187,7 +187,7 @@ TEST(KinectV2Csv, TimestampsWhoseDifferenceOverflowsAreInputErrors) {
   }
 }
 
-// A bad-input audit of 2026-11-28: `convert` wrote 1e11 s, which reading its output refused.
+// A time `convert` could write but reading its output would refuse (1e11 s) is refused at once.
 TEST(KinectV2Csv, TimesBeyondARecordingsSpanAreInputErrors) {
   const std::string file =
       write_file(test_dir(), "span.csv",
@@ -255,16 +255,16 @@ TEST(NtuSkeleton, BadInputNamesFileAndLine) {
   const auto bodiless = write_file(dir, "bodiless.skeleton", "3\n0\n0\n0\n");
   EXPECT_EQ(testing::input_error_message([&] { read_ntu_skeleton(bodiless); }),
             bodiless + ": no body in any of the 3 frames (every body count is 0): no hands to replay");
-  // A body whose hand joints are never tracked (state 0): frames without hands too (exit 0
-  // before; bad-input audit of 2026-11-29).
+  // A body whose hand joints are never tracked (state 0): frames without hands too, not a
+  // replay of nothing with exit 0.
   const std::string never = ntu_body(person, Vec3(0, 0, 2), Vec3(0, 0, 2), 0, 0);
   const auto untracked = write_file(dir, "untracked.skeleton", "2\n1\n" + never + "1\n" + never);
   EXPECT_EQ(testing::input_error_message([&] { read_ntu_skeleton(untracked); }),
             untracked + ": no hand tracked and no key in any of the 2 frames: nothing to replay");
 }
 
-// Every hand joint untracked (TrackingState 0) in every frame: the run replayed nothing, with
-// status ok (bad-input audit of 2026-11-29); one tracked frame is enough.
+// Every hand joint untracked (TrackingState 0) in every frame: the run would replay nothing,
+// with status ok; one tracked frame is enough.
 TEST(KinectV2Csv, ARecordingWithNoTrackedHandIsAnInputError) {
   const auto dir = test_dir();
   const JointValues untracked{"0", "0", "2", "0"};

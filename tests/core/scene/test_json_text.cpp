@@ -84,8 +84,8 @@ TEST(JsonText, QuotedValuesAreShortAndShallow) {
   EXPECT_EQ(quoted.substr(quoted.size() - 3), "...");
 }
 
-// A recording's line without separators is one field: quoted whole, a 60 MB line made the
-// message as long (a bad-input audit of 2026-11-28).
+// A recording's line without separators is one field: quoted whole, a 60 MB line would make
+// the message as long.
 TEST(JsonText, QuotedTextIsCutAtACharacter) {
   EXPECT_EQ(quote_text("nan"), "\"nan\"");
   const std::string line(1000, 'x');

@@ -118,8 +118,8 @@ TEST(SceneLimits, ClothSizeIsCountedIn64BitsAndBounded) {
   EXPECT_EQ(error_for(with("cloth.rows=2.5")), "scene.json: cloth.rows: expected an integer, got 2.5");
 }
 
-// A bad-input audit of 2026-11-28: at a spacing of 1e-17 m every particle started at one point
-// and the run ended `ok`; a mass of 1e-300 with k = 1e12 gave an infinite frequency.
+// At a spacing of 1e-17 m every particle would start at one point and the run end `ok`; a mass
+// of 1e-300 with k = 1e12 gives an infinite frequency.
 TEST(SceneLimits, SpacingAndMassTooSmallForTheModelAreRefused) {
   EXPECT_EQ(error_for(with("cloth.spacing=1e-17")),
             "scene.json: cloth.spacing: must be at least 1e-06, got 1e-17");
@@ -202,7 +202,7 @@ TEST(Scene, AnErrorInsideAnOverriddenValueFindsItsOverride) {
 }
 
 // A scene file that is no object is named as such, before an override finds it not an object
-// (bad-input audit, 2026-11-28: the message blamed --set and named no file).
+// (a message that blamed --set would name no file).
 TEST(Scene, AFileThatIsNoObjectIsNamedBeforeTheOverrides) {
   const std::filesystem::path file = std::filesystem::path(::testing::TempDir()) / "array.json";
   std::ofstream(file) << "[1, 2, 3]";

@@ -72,8 +72,8 @@ TEST(ConvertCommand, RefusesItsInputAsOutputAFolderOrADeviceAndAFailedWriteIsExi
   expect_error(in + " " + dir, 2, dir + ": is a directory, not an output file");
   expect_error(in + " " + dir + "/nope/out.jsonl", 2,
                dir + "/nope/out.jsonl: its folder " + dir + "/nope does not exist");
-  // Where it cannot be opened for writing: bad input, named up front (exit 4 before 2026-11-28),
-  // and no file left behind.
+  // Where it cannot be opened for writing: bad input, named up front (not exit 4 from the first
+  // write), and no file left behind.
   expect_error(in + " /proc/drapelab_out.jsonl", 2,
                "/proc/drapelab_out.jsonl: cannot be written: No such file or directory");
   expect_error(in + " /dev/full", 4, "cannot write /dev/full: No space left on device");

@@ -1,6 +1,6 @@
 // `drapelab integrators --table`: every arkode-dirk table printed as the inline tableau that
 // `integrator.table` accepts, exactly ARKODE's coefficients, and a run with it the same run
-// as with the table's name (docs/integrators.md, "User tables"); `--stability`: the explicit
+// as with the table's name (docs/integrators/arkode.md, "User tables"); `--stability`: the explicit
 // steps' limit on a scene (docs/model.md, "Stability limit").
 #include <gtest/gtest.h>
 
@@ -21,7 +21,8 @@ using testing::run_drapelab;
 TEST(IntegratorsCommand, PrintsSdirk2AsItsTableau) {
   const auto result = run_drapelab("integrators --table ARKODE_SDIRK_2_1_2");
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  // ARKODE's SDIRK_2_1_2 (docs/integrators.md, "Which tables gain energy at large steps").
+  // ARKODE's SDIRK_2_1_2 (docs/findings/energy_gaining_tables.md, "Which tables gain energy at
+  // large steps").
   EXPECT_EQ(nlohmann::json::parse(result.out), nlohmann::json::parse(R"({
     "A": [[1.0, 0.0], [-1.0, 1.0]], "b": [0.5, 0.5], "c": [1.0, 0.0], "d": [1.0, 0.0],
     "q": 2, "p": 1})"));
@@ -102,7 +103,8 @@ TEST(IntegratorsCommand, PrintsTheStabilityLimitOfTheDrapeScene) {
   EXPECT_NEAR(undamped, 2.0 / omega, 1e-5 * undamped);
   EXPECT_NEAR(damped, (-c + std::sqrt(c * c + 4.0 * omega * omega)) / (omega * omega),
               1e-5 * damped);
-  // Measured by bisection (docs/integrators.md, "Largest stable fixed step"): 0.591-0.604 ms.
+  // Measured by bisection (docs/integrators/explicit.md, "Largest stable fixed step"): 0.591-0.604
+  // ms.
   EXPECT_GT(damped, 0.591e-3);
   EXPECT_LT(damped, 0.604e-3);
 

@@ -164,7 +164,8 @@ def main():
     assert code == 0 and took < 10 and published >= 10, (code, took, published)
     print(f"slow run: {published} frames in 2 s, stopped {took:.1f} s after Ctrl-C")
     # a run that can keep up and was held up (stopped for 1.5 s, as a stall at the start or a busy
-    # machine does) catches up with the wall clock: "cannot keep up" stayed for the whole session
+    # machine does) catches up with the wall clock, or "cannot keep up" would stay for the whole
+    # session
     # while the real-time factor read 1.00
     # (a build too slow to keep up at all, as the sanitizers' may be, has nothing to catch up to)
     stalled = LiveRun(drapelab, scene, work / "stalled", "--set", "duration=60")

@@ -96,7 +96,7 @@ def main():
 
         assert run.post("/key", "r") == (200, "ok\n")
         run.wait_for(lambda f: any(e["type"] == "release" for e in f["events"]), "the release")
-        # the hand taken away: the run goes on without it (it used to stop for good at the
+        # the hand taken away: the run goes on without it (it must not stop for good at the
         # hand's sample before the last)
         assert run.post("/hand", '{"hand": "right", "tracked": false}') == (200, "ok\n")
         gone = run.wait_for(lambda f: not right_hand(f)["available"], "the hand taken away")

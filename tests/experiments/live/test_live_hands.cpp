@@ -51,7 +51,7 @@ TEST(LiveHands, SamplesLeadTheSimulationAndLimitIsTheSampleBeforeTheLast) {
 }
 
 // A run slower than the wall clock advances to limit() every turn and then samples again at
-// the same time: it must keep moving (it used to stop for good at the second sample's limit).
+// the same time: it must keep moving, not stop for good at the second sample's limit.
 TEST(LiveHands, ARunAtTheLimitKeepsMoving) {
   LiveHands hands(TrackPolicy{}, {}, margin);
   HandTrack track;
@@ -128,7 +128,7 @@ TEST(LiveHands, FramesStayNearTheSimulationWhenItsStepIsLongerThanATurn) {
 
 // A hand taken away (POST /hand with "tracked": false, a sensor that lost it) limits nothing:
 // it comes back only in a new run, more than max_gap after its last sample, so its old curve
-// never changes. It used to hold the loop at its sample before the last for good.
+// never changes, and it cannot hold the loop at its sample before the last for good.
 TEST(LiveHands, AHandTakenAwayLimitsNothingAndComesBackInANewRun) {
   TrackPolicy policy;
   policy.max_gap = 0.15;
@@ -198,8 +198,8 @@ TEST(LiveHands, AFrameThatThrowsTheCurveOutOfTheSceneIsLeftOut) {
 
 // A run slower than the wall clock (0.5 ms of scene time a turn) samples a spacing after the
 // last frame every turn; a hand that moves 9.5 m throws the curve out at that spacing, and at
-// the same spacing the frame was left out on every turn while the track held the run at its
-// limit: it stopped there for good (bad-input audit of 2026-11-29, `drapelab live`). Spaced
+// the same spacing the frame would be left out on every turn while the track held the run at
+// its limit, which would stop it there for good (`drapelab live`). Spaced
 // wider each time, the frame is taken after a few turns and the run moves on.
 TEST(LiveHands, ARunHeldByAFrameLeftOutMovesOn) {
   LiveHands hands(TrackPolicy{}, {}, margin);

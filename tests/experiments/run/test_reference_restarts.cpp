@@ -84,7 +84,7 @@ double leapfrog_halving_ratio(double damping_spring) {
 
 TEST(ReferenceRestarts, LeapfrogIsSecondOrderWithoutDampingAndFirstOrderWithIt) {
   // Leap-frog evaluates velocity-dependent forces at the half-step velocity, so spring damping
-  // costs it an order (docs/integrators.md): damping rate c / m = 50 / s here.
+  // costs it an order (docs/integrators/explicit.md): damping rate c / m = 50 / s here.
   EXPECT_NEAR(std::log2(leapfrog_halving_ratio(0.0)), 2.0, 0.1);
   EXPECT_NEAR(std::log2(leapfrog_halving_ratio(0.05)), 1.0, 0.15);
 }

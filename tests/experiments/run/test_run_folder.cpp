@@ -76,8 +76,8 @@ TEST(RunFolder, AFileOrAnUnwritablePlaceIsRefused) {
   EXPECT_EQ(check("", true), "--out: is empty: name the output folder");
 }
 
-// --overwrite removes all or nothing: a frames/ folder it could not empty used to be found after
-// summary.json and the CSV files were gone (a bad-input audit of 2026-11-28).
+// --overwrite removes all or nothing: a frames/ folder it cannot empty must be found before
+// summary.json and the CSV files are gone.
 TEST(RunFolder, OverwriteThatCannotRemoveEverythingIsRefusedFirst) {
   if (::geteuid() == 0) GTEST_SKIP() << "root removes anything (checked as nobody by hand)";
   const fs::path dir = fresh("locked_frames");

@@ -79,7 +79,7 @@ TEST(RunLimits, StepsImpliedByDurationAreCheckedAgainstMaxSteps) {
   EXPECT_EQ(error_for(R"({"name": "arkode-erk", "adaptive": true})", 1e6), "no error");
 }
 
-// A fixed step longer than the run would be cut to the duration (bad-input audit, 2026-11-28).
+// A fixed step longer than the run would be cut to the duration: not the step the scene names.
 TEST(RunLimits, AFixedStepLongerThanTheRunIsAnInputError) {
   EXPECT_EQ(error_for(R"({"name": "implicit-euler", "dt": 1.0})", 0.1),
             "scene.json: integrator.dt: larger than duration (0.1 s): the run would take one "

@@ -1,9 +1,9 @@
 """An experiment killed by its process id takes its runs with it (docs/experiments.md, "Resume").
 
 `drapelab experiment` runs each run in a child process. Sent SIGTERM or SIGINT by its process
-id alone (not to the terminal's process group, as Ctrl-C is), the parent used to exit and leave
-its children running to the end of their runs; a resume started meanwhile wrote the same run
-folders at once. Each child now dies with its parent, and a resume then finishes the plan.
+id alone (not to the terminal's process group, as Ctrl-C is), a parent that exited would leave
+its children running to the end of their runs, and a resume started meanwhile would write the
+same run folders at once. Each child dies with its parent, and a resume then finishes the plan.
 Usage: experiment_signal_check.py DRAPELAB SOURCE_DIR WORK_DIR
 """
 import json

@@ -58,7 +58,7 @@ TEST(ExperimentMerge, TakesRunsOnlyOfThisExperimentAndItsPlannedRuns) {
 }
 
 // Two folders with a finished result of one run: the wall time (and the machine, the build) may
-// differ, the outcome may not (the first was kept without a word; bad-input audit, 2026-11-29).
+// differ, the outcome may not (keeping the first without a word would hide it).
 TEST(ExperimentMerge, TwoDifferentResultsOfOneRunAreRefused) {
   const SmallExperiment small("merge_disagree");
   drape::run_experiment(small.experiment, small.options);
@@ -82,8 +82,8 @@ TEST(ExperimentMerge, TwoDifferentResultsOfOneRunAreRefused) {
   }
 }
 
-// A merged folder that cannot be created is the command line's DIR, exit 2 (bad-input audit,
-// 2026-11-28: a raw filesystem error, exit 1).
+// A merged folder that cannot be created is the command line's DIR, exit 2, not a raw
+// filesystem error.
 TEST(ExperimentMerge, AFolderThatCannotBeCreatedIsNamed) {
   const SmallExperiment small("merge_into_file");
   drape::run_experiment(small.experiment, small.options);
@@ -146,8 +146,8 @@ TEST(ExperimentMerge, ChecksTheHeaderItReads) {
 }
 
 // A run whose result.json says it finished but whose file is gone, cut or no file (a named
-// pipe) is named, exit 2, in a source or in DIR (bad-input audit: merge exited 0 listing the
-// run as finished and the report dropped its metrics; a pipe was exit 4 naming the folder).
+// pipe) is named, exit 2, in a source or in DIR: listed as finished, the report would drop its
+// metrics without a word.
 TEST(ExperimentMerge, NamesARunFileThatIsMissingCutOrNoFile) {
   const SmallExperiment small("merge_damaged_runs");
   drape::run_experiment(small.experiment, small.options);

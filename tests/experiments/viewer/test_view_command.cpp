@@ -31,8 +31,7 @@ TEST(ViewCommand, RefusesAnOutThatIsTheRunsOwnFileOrFolder) {
                 ": --out: is the run's own frames (in " + run.string() +
                 "): name another HTML file");
   EXPECT_EQ(view_error(run, run), run.string() + ": --out: is a folder: name the HTML file to write");
-  // A place the page cannot be written is bad input named up front (exit 4 from the write until
-  // 2026-11-28).
+  // A place the page cannot be written is bad input named up front, not exit 4 from the write.
   EXPECT_EQ(view_error(run, "/proc/drapelab_view.html"),
             "/proc/drapelab_view.html: --out: cannot be written: No such file or directory");
   EXPECT_EQ(view_error(run, "/proc/drapelab_view/page.html"),

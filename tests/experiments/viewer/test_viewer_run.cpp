@@ -198,8 +198,8 @@ TEST(ViewerRun, ATraceCutAtAFrameBoundaryIsRefused) {
 }
 
 // Each file the page shows that summary.json says the run wrote must be there and whole, its
-// rows to the run's end (bad-input audit: a lost or `head`-cut hands.csv, energy.csv or
-// dummy.csv gave a page of part of the run, exit 0; a lost trace.csv, its final state only).
+// rows to the run's end: a lost or `head`-cut hands.csv, energy.csv or dummy.csv would give a
+// page of part of the run, exit 0; a lost trace.csv, its final state only.
 TEST(ViewerRun, AFileLostOrCutShortIsNamed) {
   const auto dir = testing::tiny_run("lost_or_cut");
   testing::write_text(dir / "summary.json",

@@ -315,7 +315,8 @@ TEST(ArkodeStepper, ResetAfterExhaustedHalvingsStartsAgainAtDt) {
   equilibrium.head(3 * s->num_particles()) = testing::settle(*make_integrator(settling, *s), *s);
   IntegratorOptions o = arkode_options("arkode-dirk", "", 0.05);
   // ARKODE's Newton: two of its iterations solve the stage from the equilibrium, while the
-  // line search's first, definite directions converge only linearly (docs/integrators.md).
+  // line search's first, definite directions converge only linearly
+  // (docs/integrators/line-search-newton.md).
   o.nonlinear_solver = "newton";
   o.max_newton_iters = 2;  // too few for the shaken start, even at dt / 8
   o.max_step_halvings = 3;

@@ -1,4 +1,4 @@
-// ARKODE's implicit stages solved by the line-search Newton (issue #13): the tables keep their
+// ARKODE's implicit stages solved by the line-search Newton: the tables keep their
 // orders, and the swinging sheet runs at 1/30 s with no failure and no halving, at the shipped
 // stiffness and at 100x.
 #include <gtest/gtest.h>
@@ -74,9 +74,9 @@ struct SheetCase {
   const char* table;
 };
 
-// The tables that run the sheet at 1/30 s with no failure (docs/integrators.md, "Measured on
-// the swinging sheet"). ESDIRK437L2SA_7_3_4 gains energy at this step with its stages solved
-// (stable at 1/120 s), and so, measured, do SDIRK_5_3_4, ARK548L2SA_DIRK_8_4_5,
+// The tables that run the sheet at 1/30 s with no failure (docs/integrators/line-search-newton.md,
+// "Measured on the swinging sheet"). ESDIRK437L2SA_7_3_4 gains energy at this step with its stages
+// solved (stable at 1/120 s), and so, measured, do SDIRK_5_3_4, ARK548L2SA_DIRK_8_4_5,
 // ARK437L2SA_DIRK_7_3_4, QESDIRK436L2SA_6_3_4 and the two ESDIRK547 tables: no stage solver
 // can make them pass.
 std::vector<SheetCase> implicit_tables() {
@@ -88,9 +88,9 @@ std::vector<SheetCase> implicit_tables() {
         "ESDIRK32I5L2SA_5_2_3", "ESDIRK436L2SA_6_3_4", "ESDIRK43I6L2SA_6_3_4"})
     cases.push_back({"arkode-dirk", table});
   // IMEX pairs (the springs implicit): ARK437L2SA_7_3_4 and ARK548L2SA_8_4_5 gain energy.
-  // ARK324L2SA_4_2_3 halved one step in the measurement of docs/integrators.md (a stage sliding
-  // along a saddle of the potential), made before the Levenberg-Marquardt shift; it passes since
-  // (at the bounds of 100 and 400 alike).
+  // ARK324L2SA_4_2_3 halved one step in the measurement of docs/integrators/line-search-newton.md
+  // (a stage sliding along a saddle of the potential), made before the Levenberg-Marquardt shift;
+  // it passes since (at the bounds of 100 and 400 alike).
   for (const char* pair : {"ARK324L2SA_4_2_3", "ARK436L2SA_6_3_4", "ARK548L2SAb_8_4_5"})
     cases.push_back({"arkode-imex", pair});
   return cases;
@@ -123,11 +123,11 @@ TEST(LineSearchNonlinearSolver, SwingingSheetAtOneThirtiethSecond) {
 }
 
 // At 100x stiffness, every table and pair of the shipped stiffness's list except the two that
-// gain energy at 100x only (BILLINGTON_3_3_2 and KVAERNO_7_4_5, docs/integrators.md, "Which
-// tables gain energy at large steps"); the stages take 2-5 times the iterations of the
-// shipped stiffness. ARK436L2SA_DIRK and ESDIRK32I5L2SA halved one step each in the
-// measurement of docs/integrators.md, made before the Levenberg-Marquardt shift; they pass
-// since (at the bounds of 100 and 400 alike).
+// gain energy at 100x only (BILLINGTON_3_3_2 and KVAERNO_7_4_5,
+// docs/findings/energy_gaining_tables.md, "Which tables gain energy at large steps"); the stages
+// take 2-5 times the iterations of the shipped stiffness. ARK436L2SA_DIRK and ESDIRK32I5L2SA halved
+// one step each in the measurement of docs/integrators/line-search-newton.md, made before the
+// Levenberg-Marquardt shift; they pass since (at the bounds of 100 and 400 alike).
 TEST(LineSearchNonlinearSolver, StiffSwingingSheetAtOneThirtiethSecond) {
   std::vector<SheetCase> cases = implicit_tables();
   cases.erase(std::remove_if(cases.begin(), cases.end(),
@@ -157,9 +157,9 @@ TEST(LineSearchNonlinearSolver, SwingingSheetSettlesOnTheStaticEquilibrium) {
   }
 }
 
-// Not a test: the measurement behind docs/integrators.md's table ("Measured on the swinging
-// sheet"), every DIRK table and IMEX pair at both stiffnesses, 1 s at 1/30 s. Run it with
-// --gtest_also_run_disabled_tests --gtest_filter='*DISABLED_MeasureEveryTable'.
+// Not a test: the measurement behind docs/integrators/line-search-newton.md's table ("Measured on
+// the swinging sheet"), every DIRK table and IMEX pair at both stiffnesses, 1 s at 1/30 s. Run it
+// with --gtest_also_run_disabled_tests --gtest_filter='*DISABLED_MeasureEveryTable'.
 TEST(LineSearchNonlinearSolver, DISABLED_MeasureEveryTable) {
   for (const double stiffness_factor : {1.0, 100.0}) {
     for (const ArkodeTable& table : arkode_tables()) {
@@ -234,7 +234,7 @@ TEST(LineSearchNonlinearSolver, CountsBacktracksAndSkipsArkodesLinearSolver) {
   EXPECT_EQ(c.to_json().at("line_search_backtracks"), c.line_search_backtracks);
 }
 
-// The line search is the default stage solver of arkode-dirk and arkode-imex (issue #13), with a
+// The line search is the default stage solver of arkode-dirk and arkode-imex, with a
 // bound of 400 iterations a stage; `newton` keeps ARKODE's, with its bound of 10.
 TEST(LineSearchNonlinearSolver, IsTheDefaultOfTheNewtonIntegrators) {
   for (const char* name : {"arkode-dirk", "arkode-imex"}) {

@@ -1,8 +1,8 @@
 // Stability measures of Butcher tableaus against closed forms (backward Euler, the implicit
 // midpoint rule, Alexander's SDIRK2, ARKODE's SDIRK_2_1_2, Hairer and Wanner's SDIRK_5_3_4, an
 // ESDIRK), and the measure that separates the ARKODE tables that gain energy on the stiff
-// swinging sheet at 1/30 s from those that settle (docs/integrators.md, "Which tables gain
-// energy at large steps").
+// swinging sheet at 1/30 s from those that settle (docs/findings/energy_gaining_tables.md, "Which
+// tables gain energy at large steps").
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -106,7 +106,8 @@ TEST(TableStability, EsdirkFirstStageIsExplicit) {
   EXPECT_NEAR(s.stiff_limit, 0.0, 1e-10);
 }
 
-// The verdicts of docs/integrators.md, "Measured on the swinging sheet" (stages solved, 1/30 s).
+// The verdicts of docs/integrators/line-search-newton.md, "Measured on the swinging sheet" (stages
+// solved, 1/30 s).
 const std::vector<std::string> gain_at_shipped_stiffness = {
     "SDIRK_5_3_4",          "ARK548L2SA_DIRK_8_4_5", "ARK437L2SA_DIRK_7_3_4",
     "QESDIRK436L2SA_6_3_4", "ESDIRK437L2SA_7_3_4",   "ESDIRK547L2SA_7_4_5",
@@ -133,10 +134,10 @@ TEST(TableStability, ImplicitInverseNormSeparatesTheTablesThatGainEnergy) {
 
 TEST(TableStability, TheDefaultDirkTableIsOneThatSettles) {
   // arkode-dirk's default must take 1/30 s steps in contact without adding energy
-  // (docs/integrators.md, "Default table"): a table that settles on the swinging sheet, below
-  // the |A_I^-1| threshold, L-stable and stiffly accurate (b is A's last row: the step is its
-  // last stage, an implicit solve, and damps stiff modes as that stage does), of order 3 with
-  // an order-2 embedding for adaptive runs.
+  // (docs/integrators/tables-at-large-steps.md, "Default table"): a table that settles on the
+  // swinging sheet, below the |A_I^-1| threshold, L-stable and stiffly accurate (b is A's last row:
+  // the step is its last stage, an implicit solve, and damps stiff modes as that stage does), of
+  // order 3 with an order-2 embedding for adaptive runs.
   const std::string name =
       default_arkode_table(ArkodeKind::diagonally_implicit).substr(std::string("ARKODE_").size());
   EXPECT_NE(std::find(settle.begin(), settle.end(), name), settle.end()) << name;
@@ -151,11 +152,11 @@ TEST(TableStability, TheDefaultDirkTableIsOneThatSettles) {
 
 TEST(TableStability, Kvaerno423AndArk324DirkShareTheirStabilityFunction) {
   // In contact at 1/30 s ARK324L2SA_DIRK gains energy and KVAERNO_4_2_3 settles
-  // (docs/integrators.md, "Default table"), yet no linear measure can tell them apart: both
-  // are L-stable ESDIRKs of order 3 with three implicit stages of the same diagonal gamma, so
-  // R(z) = P(z) / (1 - gamma z)^3 with P of degree 2 is fixed by the order conditions. Equal
-  // on the imaginary axis, on the negative real axis and on the positive real axis (the
-  // growth modes of compressed, buckling springs); what differs is the stages (c_3 = 0.6
+  // (docs/integrators/tables-at-large-steps.md, "Default table"), yet no linear measure can tell
+  // them apart: both are L-stable ESDIRKs of order 3 with three implicit stages of the same
+  // diagonal gamma, so R(z) = P(z) / (1 - gamma z)^3 with P of degree 2 is fixed by the order
+  // conditions. Equal on the imaginary axis, on the negative real axis and on the positive real
+  // axis (the growth modes of compressed, buckling springs); what differs is the stages (c_3 = 0.6
   // against 1: a nonlinear, not a linear, property). ARKODE gives Kvaerno's coefficients to 10
   // digits (gamma = 0.4358665215, ARK324L2SA's to 16), hence the tolerances.
   const ButcherTableau ark = arkode_dirk("ARK324L2SA_DIRK_4_2_3");
@@ -194,9 +195,9 @@ TEST(TableStability, LinearAndAlgebraicMeasuresDoNotSeparateThem) {
             table_stability(arkode_dirk("ARK437L2SA_DIRK_7_3_4")).algebraic_stability);
 }
 
-// Not a test: prints the measures behind docs/integrators.md's table ("Which tables gain energy
-// at large steps"), one markdown row a table (verdict column added by hand). Run it with
-// --gtest_also_run_disabled_tests --gtest_filter='*DISABLED_PrintEveryTable'.
+// Not a test: prints the measures behind docs/findings/energy_gaining_tables.md's table ("Which
+// tables gain energy at large steps"), one markdown row a table (verdict column added by hand). Run
+// it with --gtest_also_run_disabled_tests --gtest_filter='*DISABLED_PrintEveryTable'.
 TEST(TableStability, DISABLED_PrintEveryTable) {
   // The stiffest spring's h omega at 1/30 s: about 25 at the shipped stiffness, 250 at 100x.
   const auto largest_stage = [](const ButcherTableau& t, double y) {

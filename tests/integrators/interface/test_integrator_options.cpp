@@ -140,7 +140,7 @@ TEST(IntegratorOptions, ExactSolveIsLuOrBicgstabWithAPreconditioner) {
             "");
 }
 
-// Tolerances that control nothing are refused (bad-input audit, 2026-11-28).
+// Tolerances that control nothing are refused (above 1 no test controls anything).
 TEST(IntegratorOptions, TolerancesAreBoundedAbove) {
   const nlohmann::json adaptive = {{"name", "arkode-erk"}, {"adaptive", true}};
   nlohmann::json o = adaptive;

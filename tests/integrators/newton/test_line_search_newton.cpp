@@ -1,4 +1,4 @@
-// The line-search Newton on the hard stage of issue #13: a backward-Euler step of 1/30 s of the
+// The line-search Newton on the swinging sheet's hard stage: a backward-Euler step of 1/30 s of the
 // horizontal sheet at 100x stiffness, where plain Newton diverges.
 #include <gtest/gtest.h>
 
