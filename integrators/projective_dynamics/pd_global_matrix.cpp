@@ -20,6 +20,8 @@ void PdGlobalMatrix::factor(const std::vector<unsigned char>& fixed,
       m_particles.push_back(i);
     }
   const int rows = num_free();
+  m_slot_particle.clear();
+  if (rows == 0) return;  // every particle fixed: nothing to solve
   // Lower triangle only: SimplicialLDLT<Lower> reads nothing else.
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(static_cast<std::size_t>(rows + m_springs.size()));
@@ -62,6 +64,7 @@ void PdGlobalMatrix::refactor(const std::vector<unsigned char>& contact) {
 }
 
 void PdGlobalMatrix::solve_in_place(double* z) const {
+  if (num_free() == 0) return;
   // L is stored by columns, strictly lower (unit diagonal implicit) in SimplicialLDLT.
   const auto& l = m_factor.matrixL().nestedExpression();
   const int* start = l.outerIndexPtr();
