@@ -76,14 +76,18 @@ TEST(ProjectiveDynamics, ConvergesToBackwardEulerOnTheSwingingSheet) {
   expect_converges_to_backward_euler(*s, y);
 }
 
-TEST(ProjectiveDynamics, ConvergesToBackwardEulerOnASphereWithTheSmoothModel) {
-  auto s = testing::cloth_against_sphere(CollisionModel::smooth);
-  const Eigen::VectorXd y = s->initial_state(0.0);
-  int in_contact = 0;
-  for (int i = 0; i < s->num_particles(); ++i)
-    in_contact += s->collision().energy(i, y.segment<3>(3 * i)) > 0.0;
-  ASSERT_GT(in_contact, 0) << "the cloth must touch the sphere";
-  expect_converges_to_backward_euler(*s, y);
+TEST(ProjectiveDynamics, ConvergesToBackwardEulerOnASphereWithTheSmoothAndSurfaceModels) {
+  // The particle model's force jumps where the nearest object particle switches: its backward
+  // Euler step has no exact root in general (docs/integrators/projective-dynamics.md, Limits).
+  for (const CollisionModel model : {CollisionModel::smooth, CollisionModel::surface}) {
+    auto s = testing::cloth_against_sphere(model);
+    const Eigen::VectorXd y = s->initial_state(0.0);
+    int in_contact = 0;
+    for (int i = 0; i < s->num_particles(); ++i)
+      in_contact += s->collision().energy(i, y.segment<3>(3 * i)) > 0.0;
+    ASSERT_GT(in_contact, 0) << "the cloth must touch the sphere";
+    expect_converges_to_backward_euler(*s, y);
+  }
 }
 
 TEST(ProjectiveDynamics, ChebyshevReachesBackwardEulerInAThirtiethOfTheIterations) {
