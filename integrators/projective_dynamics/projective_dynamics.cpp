@@ -120,9 +120,8 @@ double ProjectiveDynamics::step(double t_stop) {
       size += dx.squaredNorm();
       Vec3 next = particle(x, i) + dx;
       if (m_chebyshev) {
-        const Vec3 before = particle(m_previous, i);
+        if (k > 0) next = omega * (next - particle(m_previous, i)) + particle(m_previous, i);
         particle(m_previous, i) = particle(x, i);
-        if (k > 0) next = omega * (next - before) + before;
       }
       particle(x, i) = next;
       particle(v, i) = (next - particle(m_start, i)) / h;
