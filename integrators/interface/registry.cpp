@@ -7,6 +7,7 @@
 #include "integrators/explicit/leapfrog.hpp"
 #include "integrators/newton/line_search_newton.hpp"
 #include "integrators/newton/reduced_newton_solver.hpp"
+#include "integrators/projective_dynamics/projective_dynamics.hpp"
 #include "integrators/explicit/symplectic_euler.hpp"
 
 namespace drape {
@@ -78,7 +79,8 @@ const std::vector<IntegratorDeclaration>& integrators() {
   static const std::vector<IntegratorDeclaration> list = [] {
     std::vector<IntegratorDeclaration> all = built_in_declarations();
     // Each later integrator's folder declares it (integrator_declaration.hpp).
-    for (IntegratorDeclaration (*declare)() : std::initializer_list<IntegratorDeclaration (*)()>{})
+    for (IntegratorDeclaration (*declare)() : std::initializer_list<IntegratorDeclaration (*)()>{
+             &projective_dynamics_declaration})
       all.push_back(declare());
     return all;
   }();
