@@ -9,12 +9,18 @@ namespace drape {
 
 namespace {
 
+// The integrators that take one linearised solve a step (linearised_step.hpp): they share the
+// linear-solver keys and their defaults.
+bool one_linear_solve_a_step(const std::string& name) {
+  return name == "implicit-euler" || name == "bdf2";
+}
+
 // Keys that only some integrators read: given to another one, they would be ignored without a
 // word, and the run would not be the one its scene describes.
 void reject_unused_keys(const JsonReader& in, const IntegratorOptions& o) {
   const bool arkode = o.name.rfind("arkode-", 0) == 0;
   const bool newton = o.name == "arkode-dirk" || o.name == "arkode-imex";
-  const bool linear = newton || o.name == "implicit-euler";
+  const bool linear = newton || one_linear_solve_a_step(o.name);
   const bool converged_euler = o.name == "implicit-euler" && o.solve == "converged";
   const struct {
     const char* key;
@@ -37,8 +43,8 @@ void reject_unused_keys(const JsonReader& in, const IntegratorOptions& o) {
       {"max_step_halvings", (newton && !o.adaptive) || converged_euler,
        "fixed-step arkode-dirk and arkode-imex (adaptive runs shrink a failed step themselves) "
        "and implicit-euler with solve = converged"},
-      {"linear_tolerance", linear, "implicit-euler, arkode-dirk and arkode-imex"},
-      {"max_linear_iters", linear, "implicit-euler, arkode-dirk and arkode-imex"},
+      {"linear_tolerance", linear, "implicit-euler, bdf2, arkode-dirk and arkode-imex"},
+      {"max_linear_iters", linear, "implicit-euler, bdf2, arkode-dirk and arkode-imex"},
   };
   for (const auto& k : keys)
     if (!k.used && in.has(k.key))
@@ -175,7 +181,7 @@ std::string linear_solver_of(const IntegratorOptions& options) {
   // Measured on the draped-cloth benchmark (docs/integrators.md): the multigrid cycle pays for
   // itself at implicit-euler's large steps (90 -> 9 CG iterations at 1/30 s); ARKODE's adaptive
   // steps there are microseconds, S is then close to M, and block Jacobi is cheaper.
-  return options.name == "implicit-euler" ? "pcg-multigrid" : "pcg-reduced";
+  return one_linear_solve_a_step(options.name) ? "pcg-multigrid" : "pcg-reduced";
 }
 
 std::string nonlinear_solver_of(const IntegratorOptions& options) {
@@ -203,7 +209,7 @@ std::string exact_solve_of(const IntegratorOptions& options) {
 }
 
 double default_linear_tolerance(const std::string& name) {
-  return name == "implicit-euler" ? 1e-3 : 1e-8;
+  return one_linear_solve_a_step(name) ? 1e-3 : 1e-8;
 }
 
 double linear_tolerance_of(const IntegratorOptions& options) {

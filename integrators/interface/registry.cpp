@@ -3,6 +3,7 @@
 #include "core/scene/input_error.hpp"
 #include "integrators/arkode/arkode_stepper.hpp"
 #include "integrators/arkode/arkode_tables.hpp"
+#include "integrators/bdf2/bdf2.hpp"
 #include "integrators/implicit_euler/implicit_euler.hpp"
 #include "integrators/explicit/leapfrog.hpp"
 #include "integrators/newton/line_search_newton.hpp"
@@ -78,7 +79,8 @@ const std::vector<IntegratorDeclaration>& integrators() {
   static const std::vector<IntegratorDeclaration> list = [] {
     std::vector<IntegratorDeclaration> all = built_in_declarations();
     // Each later integrator's folder declares it (integrator_declaration.hpp).
-    for (IntegratorDeclaration (*declare)() : std::initializer_list<IntegratorDeclaration (*)()>{})
+    for (IntegratorDeclaration (*declare)() :
+         std::initializer_list<IntegratorDeclaration (*)()>{&bdf2_declaration})
       all.push_back(declare());
     return all;
   }();
