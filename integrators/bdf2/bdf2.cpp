@@ -55,7 +55,9 @@ IntegratorDeclaration bdf2_declaration() {
           {},
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<Bdf2>(system, options);
-          }};
+          },
+          // implicit-euler's linear-solver keys and defaults (docs/integrators/bdf2.md, "Keys")
+          {false, false, true, false, false, "pcg-multigrid", 1e-3}};
 }
 
 }  // namespace drape
