@@ -1,4 +1,4 @@
-// drapelab_bench: the 1/30 s step of the implicit methods at 32 x 32, 64 x 64 and
+// drapelab_bench: the 1/30 s step of issue 13's implicit methods at 32 x 32, 64 x 64 and
 // 128 x 128: implicit-euler (one linearised solve, its default pcg-multigrid) and arkode-dirk
 // with the line-search Newton, SDIRK2 (ARKODE_SDIRK_2_1_2, and Alexander's as a user table) and
 // a third-order ESDIRK (ARKODE_ESDIRK325L2SA_5_2_3), on a free swinging sheet and on the dress
@@ -13,55 +13,13 @@
 // 60 steps, 2 s of motion (docs/performance/implicit-step.md); an ARKODE step costs seconds.
 #include <benchmark/benchmark.h>
 
-#include "experiments/benchmarks/draped_cloth.hpp"
+#include "experiments/benchmarks/bench_scenes.hpp"
 #include "integrators/interface/registry.hpp"
 
 namespace drape {
 namespace {
 
 constexpr double frame = 1.0 / 30.0;
-
-/// An n x n sheet of 0.5 m side with particles of `particle_mass` (k = 50 N/m, draped_cloth's
-/// cloth), horizontal, pinned at the two corners of its first row, no object: released at rest
-/// it falls and swings (the sheet of docs/integrators/line-search-newton.md at the benchmarks'
-/// resolutions).
-std::unique_ptr<ClothSystem> sheet_of(int n, double particle_mass, Eigen::VectorXd& y) {
-  ClothParams p;
-  p.rows = p.cols = n;
-  p.spacing = 0.5 / n;
-  p.particle_mass = particle_mass;
-  p.k_structural = p.k_shear = 50.0;
-  p.damping_spring = 0.01;
-  p.damping_air = 1e-4;
-  p.origin = Vec3(-0.25, 1.3, 0.0);
-  p.col_dir = Vec3(1.0, 0.0, 0.0);
-  p.row_dir = Vec3(0.0, 0.0, 1.0);
-  auto system = std::make_unique<ClothSystem>(build_cloth(p), nullptr, ForceParams{});
-  y = system->initial_state(0.0);
-  for (const int corner : {0, n - 1})
-    system->constraints().fix_at(corner, y.segment<3>(3 * corner));
-  return system;
-}
-
-/// The sheet of 0.2 kg: refined, its particles get lighter and gamma^2 k / m, the stiffness S
-/// holds against the mass, grows 4x per refinement (docs/performance/implicit-step.md).
-std::unique_ptr<ClothSystem> swinging_sheet(int n, Eigen::VectorXd& y) {
-  return sheet_of(n, 0.2 / (n * n), y);
-}
-
-/// The sheet with the particles of the 64 x 64 sheet at every size (0.8 kg at 128 x 128):
-/// gamma^2 k / m is the same at every n, so the solver's scaling shows without the growth of
-/// the system's stiffness (docs/journal/2026-11-27-growth-is-the-cloth.md).
-std::unique_ptr<ClothSystem> sheet_of_equal_particles(int n, Eigen::VectorXd& y) {
-  return sheet_of(n, 0.2 / (64 * 64), y);
-}
-
-/// draped_cloth with the smooth contact model, top row pinned.
-std::unique_ptr<ClothSystem> smooth_drape(int n, Eigen::VectorXd& y) {
-  auto system = bench::draped_cloth(n, y, true, CollisionModel::smooth);
-  for (int col = 0; col < n; ++col) system->constraints().fix_at(col, y.segment<3>(3 * col));
-  return system;
-}
 
 struct StepCase {
   const char* label;
@@ -77,8 +35,8 @@ struct StepCase {
 // Alexander's two-stage SDIRK (1977, SIAM J. Numer. Anal. 14(6); Hairer and Wanner, Solving
 // ODEs II, table IV.6.5 with gamma = 1 - 1/sqrt(2)): L-stable and stiffly accurate, each stage a
 // backward-Euler-like solve over gamma h = 0.29 h. ARKODE's SDIRK_2_1_2 is another method
-// (A = [1 0; -1 1], docs/findings/energy_gaining_tables.md "Which tables gain energy"), each stage
-// over h.
+// (A = [1 0; -1 1], docs/findings/energy_gaining_tables.md "Which tables gain energy"), each
+// stage over h.
 constexpr const char* alexander_sdirk2 =
     R"({"c": [0.29289321881345254, 1], "A": [[0.29289321881345254, 0],)"
     R"( [0.70710678118654752, 0.29289321881345254]],)"
@@ -141,8 +99,8 @@ void run_implicit_steps(benchmark::State& state, Scene scene, const StepCase& c)
 }
 
 const bool registered = [] {
-  const std::pair<const char*, Scene> scenes[] = {{"sheet", swinging_sheet},
-                                                  {"dress-form-smooth", smooth_drape}};
+  const std::pair<const char*, Scene> scenes[] = {{"sheet", bench::swinging_sheet},
+                                                  {"dress-form-smooth", bench::smooth_drape}};
   for (const auto& [scene_label, scene] : scenes)
     for (const StepCase& c : cases)
       benchmark::RegisterBenchmark(
@@ -156,7 +114,7 @@ const bool registered = [] {
   const StepCase& implicit_euler = cases[0];
   benchmark::RegisterBenchmark(
       "BM_ImplicitStep/sheet-equal-particles/implicit-euler",
-      [&](benchmark::State& state) { run_implicit_steps(state, sheet_of_equal_particles, implicit_euler); })
+      [&](benchmark::State& state) { run_implicit_steps(state, bench::sheet_of_equal_particles, implicit_euler); })
       ->Arg(32)
       ->Arg(64)
       ->Arg(128)

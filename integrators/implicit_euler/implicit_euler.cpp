@@ -7,7 +7,8 @@ ImplicitEuler::ImplicitEuler(ClothSystem& system, const IntegratorOptions& optio
       m_options(options),
       m_dt(options.dt),
       m_solver(system, *reduced_solve_named(linear_solver_of(options)), ForceSplit::all,
-               linear_tolerance_of(options), options.max_linear_iters) {
+               linear_tolerance_of(options), options.max_linear_iters),
+      m_linearised(system, m_solver) {
   if (uses_line_search(options))
     m_line_search.emplace(system, ForceSplit::all, m_solver,
                           *exact_solve_named(exact_solve_of(options)));
@@ -22,7 +23,8 @@ double ImplicitEuler::step(double t_stop) {
     --m_counters.steps;
     --m_counters.attempts;
   } else {
-    linearised_step(t_next);
+    // One Newton step of y_{n+1} = y_n + h f(y_{n+1}) from y_n: Baraff and Witkin's system.
+    m_linearised.take(m_t, t_next - m_t, t_next - m_t, nullptr, m_y, m_counters);
     m_system.project(t_next, positions(), velocities());
   }
   return accept_fixed_step(t_next);
@@ -77,36 +79,6 @@ void ImplicitEuler::converged_step(double t_start, double t_next) {
                                 std::to_string(t_next) + ": stopped by " + result.stopped_by);
   }
   m_y = m_increment;
-}
-
-void ImplicitEuler::linearised_step(double t_next) {
-  const double h = t_next - m_t;
-  VecMap x = positions(), v = velocities();
-  const Eigen::Index n3 = x.size();
-  // One Newton step of y_{n+1} = y_n + h f(y_{n+1}) from y_n solves (I - h J) dy = h f(y_n);
-  // its reduction to the velocities is Baraff and Witkin's system. A fixed particle's rows are
-  // the identity, so its increment is set to the exact prescribed motion instead.
-  m_residual.resize(m_y.size());
-  m_system.rhs(m_t, m_y, m_residual);
-  ++m_counters.rhs_evals;
-  m_residual *= h;
-  const ConstraintSet& constraints = m_system.constraints();
-  for (const int i : constraints.fixed_particles()) {
-    const Trajectory& path = *constraints.trajectory(i);
-    m_residual.segment<3>(3 * i) = path.position(m_t + h) - particle(x, i);
-    m_residual.segment<3>(n3 + 3 * i) = path.velocity(m_t + h) - particle(v, i);
-  }
-  m_solver.update(x, v, h);
-  ++m_counters.jacobian_setups;
-  m_increment.resize(m_y.size());
-  const long cg_before = m_solver.iterations();
-  // CG starts from the best combination of the last two steps' dv: velocities change smoothly
-  // from step to step, but the last dv alone is a poor start where the motion turns.
-  if (!m_solver.solve(m_residual, m_increment, CgStart::projected))
-    ++m_counters.convergence_failures;
-  m_counters.linear_iters += m_solver.iterations() - cg_before;
-  ++m_counters.newton_iters;
-  m_y += m_increment;  // x += h (v + dv), v += dv
 }
 
 }  // namespace drape

@@ -4,6 +4,7 @@
 #include "integrators/interface/integrator.hpp"
 #include "integrators/interface/integrator_options.hpp"
 #include "integrators/newton/line_search_newton.hpp"
+#include "integrators/newton/linearised_step.hpp"
 #include "integrators/newton/reduced_newton_solver.hpp"
 
 namespace drape {
@@ -30,8 +31,6 @@ class ImplicitEuler final : public Integrator {
   double step(double t_stop) override;
 
  private:
-  /// The linearised step (Baraff and Witkin) to t_next.
-  void linearised_step(double t_next);
   /// Backward Euler from t_start to t_next solved to convergence; throws IntegratorFailure
   /// when it is not (the state is then unchanged).
   void converged_step(double t_start, double t_next);
@@ -41,8 +40,9 @@ class ImplicitEuler final : public Integrator {
   IntegratorOptions m_options;
   double m_dt;
   ReducedNewtonSolver m_solver;
+  LinearisedStep m_linearised;                    // solve = linearised
   std::optional<LineSearchNewton> m_line_search;  // solve = converged
-  Eigen::VectorXd m_residual, m_increment, m_weights;
+  Eigen::VectorXd m_increment, m_weights;
 };
 
 }  // namespace drape

@@ -43,6 +43,23 @@ struct SettingKey {
 using IntegratorFactory = std::unique_ptr<Integrator> (*)(ClothSystem& system,
                                                           const IntegratorOptions& options);
 
+/// Which of IntegratorOptions' named keys (the fields older than SettingKey, shared by several
+/// integrators) an integrator reads, and the defaults it gives the linear solver's. Left out of a
+/// declaration: none of them, as for the explicit integrators.
+struct NamedKeys {
+  bool error_tolerances = false;  ///< rtol and atol (the arkode-* integrators)
+  /// max_newton_iters, nonlinear_solver and, on fixed steps, max_step_halvings: stages solved
+  /// by ARKODE's Newton or the line search (arkode-dirk, arkode-imex)
+  bool newton_stages = false;
+  bool linear_solves = false;  ///< linear_tolerance and max_linear_iters
+  /// `solve`, linearised or converged; a converged run reads rtol, atol, max_newton_iters,
+  /// exact_solve and max_step_halvings too (implicit-euler)
+  bool solve = false;
+  bool imex_split = false;  ///< imex_split (arkode-imex)
+  std::string linear_solver = "pcg-reduced";  ///< `linear_solver` when not given
+  double linear_tolerance = 1e-8;             ///< `linear_tolerance` when not given
+};
+
 /// An integrator's declaration.
 struct IntegratorDeclaration {
   std::string name;         ///< the `integrator.name` that selects it
@@ -52,6 +69,7 @@ struct IntegratorDeclaration {
   std::string description;  ///< one line, with its citation
   std::vector<SettingKey> keys;  ///< its own keys, read into IntegratorOptions::settings
   IntegratorFactory make = nullptr;
+  NamedKeys named_keys = {};  ///< the named keys it reads (not listed by to_json)
 
   const SettingKey* key(const std::string& name) const;
   nlohmann::json to_json() const;

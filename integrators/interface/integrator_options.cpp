@@ -9,13 +9,22 @@ namespace drape {
 
 namespace {
 
+// The named keys the integrator declares it reads; none for a name no integrator has (options
+// built in code before their name is checked).
+const NamedKeys& named_keys_of(const std::string& name) {
+  static const NamedKeys none;
+  const IntegratorDeclaration* declaration = find_integrator(name);
+  return declaration ? declaration->named_keys : none;
+}
+
 // Keys that only some integrators read: given to another one, they would be ignored without a
 // word, and the run would not be the one its scene describes.
 void reject_unused_keys(const JsonReader& in, const IntegratorOptions& o) {
-  const bool arkode = o.name.rfind("arkode-", 0) == 0;
-  const bool newton = o.name == "arkode-dirk" || o.name == "arkode-imex";
-  const bool linear = newton || o.name == "implicit-euler";
-  const bool converged_euler = o.name == "implicit-euler" && o.solve == "converged";
+  const NamedKeys& named = named_keys_of(o.name);
+  const bool arkode = named.error_tolerances;
+  const bool newton = named.newton_stages;
+  const bool linear = named.linear_solves;
+  const bool converged_euler = named.solve && o.solve == "converged";
   const struct {
     const char* key;
     bool used;
@@ -29,16 +38,16 @@ void reject_unused_keys(const JsonReader& in, const IntegratorOptions& o) {
       {"max_newton_iters", newton || converged_euler,
        "arkode-dirk, arkode-imex and implicit-euler with solve = converged"},
       {"nonlinear_solver", newton, "arkode-dirk and arkode-imex"},
-      {"solve", o.name == "implicit-euler", "implicit-euler"},
+      {"solve", named.solve, "implicit-euler"},
       {"exact_solve", uses_line_search(o),
        "arkode-dirk and arkode-imex with nonlinear_solver = line-search and implicit-euler with "
        "solve = converged"},
-      {"imex_split", o.name == "arkode-imex", "arkode-imex"},
+      {"imex_split", named.imex_split, "arkode-imex"},
       {"max_step_halvings", (newton && !o.adaptive) || converged_euler,
        "fixed-step arkode-dirk and arkode-imex (adaptive runs shrink a failed step themselves) "
        "and implicit-euler with solve = converged"},
-      {"linear_tolerance", linear, "implicit-euler, arkode-dirk and arkode-imex"},
-      {"max_linear_iters", linear, "implicit-euler, arkode-dirk and arkode-imex"},
+      {"linear_tolerance", linear, "implicit-euler, bdf2, arkode-dirk and arkode-imex"},
+      {"max_linear_iters", linear, "implicit-euler, bdf2, arkode-dirk and arkode-imex"},
   };
   for (const auto& k : keys)
     if (!k.used && in.has(k.key))
@@ -172,14 +181,11 @@ IntegratorOptions read_integrator_options(const nlohmann::json& object, const st
 
 std::string linear_solver_of(const IntegratorOptions& options) {
   if (!options.linear_solver.empty()) return options.linear_solver;
-  // Measured on the draped-cloth benchmark (docs/integrators.md): the multigrid cycle pays for
-  // itself at implicit-euler's large steps (90 -> 9 CG iterations at 1/30 s); ARKODE's adaptive
-  // steps there are microseconds, S is then close to M, and block Jacobi is cheaper.
-  return options.name == "implicit-euler" ? "pcg-multigrid" : "pcg-reduced";
+  return named_keys_of(options.name).linear_solver;
 }
 
 std::string nonlinear_solver_of(const IntegratorOptions& options) {
-  if (options.name != "arkode-dirk" && options.name != "arkode-imex") return "";
+  if (!named_keys_of(options.name).newton_stages) return "";
   // The line search is the default of the two Newton integrators (issue 13; docs/integrators.md,
   // "Default"): ARKODE's Newton rejects the first, growing iterations of a large step and has it
   // halved. `newton` stays selectable.
@@ -187,7 +193,7 @@ std::string nonlinear_solver_of(const IntegratorOptions& options) {
 }
 
 bool uses_line_search(const IntegratorOptions& options) {
-  if (options.name == "implicit-euler") return options.solve == "converged";
+  if (named_keys_of(options.name).solve) return options.solve == "converged";
   return nonlinear_solver_of(options) == "line-search";
 }
 
@@ -203,7 +209,7 @@ std::string exact_solve_of(const IntegratorOptions& options) {
 }
 
 double default_linear_tolerance(const std::string& name) {
-  return name == "implicit-euler" ? 1e-3 : 1e-8;
+  return named_keys_of(name).linear_tolerance;
 }
 
 double linear_tolerance_of(const IntegratorOptions& options) {

@@ -55,11 +55,11 @@ struct IntegratorOptions {
 };
 
 /// The linear solver an implicit integrator uses: `linear_solver`, or when empty pcg-multigrid
-/// for implicit-euler and pcg-reduced inside ARKODE (measured, docs/integrators.md).
+/// for implicit-euler and bdf2 and pcg-reduced inside ARKODE (measured, docs/integrators.md).
 std::string linear_solver_of(const IntegratorOptions& options);
-/// CG's relative residual when `linear_tolerance` is 0: 1e-3 for implicit-euler (its single
-/// linearised step is first order: a 1e-3 residual stays below its truncation error at any
-/// step worth taking implicitly, docs/integrators.md), 1e-8 inside ARKODE's preconditioner.
+/// CG's relative residual when `linear_tolerance` is 0: 1e-3 for implicit-euler and bdf2 (below
+/// their truncation error at any step worth taking implicitly, docs/integrators.md and
+/// docs/integrators/bdf2.md, "Linear tolerance"), 1e-8 inside ARKODE's preconditioner.
 double default_linear_tolerance(const std::string& name);
 /// `linear_tolerance`, or the integrator's default when it is 0.
 double linear_tolerance_of(const IntegratorOptions& options);

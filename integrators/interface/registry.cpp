@@ -3,6 +3,7 @@
 #include "core/scene/input_error.hpp"
 #include "integrators/arkode/arkode_stepper.hpp"
 #include "integrators/arkode/arkode_tables.hpp"
+#include "integrators/bdf2/bdf2.hpp"
 #include "integrators/implicit_euler/implicit_euler.hpp"
 #include "integrators/explicit/leapfrog.hpp"
 #include "integrators/newton/line_search_newton.hpp"
@@ -14,20 +15,39 @@ namespace drape {
 
 namespace {
 
+// The ARKODE integrators, each declared once: its name, its kind of tables, and the named keys
+// it reads (NamedKeys' fields in order: error_tolerances, newton_stages, linear_solves, solve,
+// imex_split; the linear solver's defaults pcg-reduced and 1e-8).
+struct ArkodeIntegrator {
+  const char* name;
+  ArkodeKind kind;
+  const char* family;
+  const char* description;
+  NamedKeys named_keys;
+};
+
+const ArkodeIntegrator arkode_integrators[] = {
+    {"arkode-erk", ArkodeKind::explicit_rk, "explicit",
+     "ARKODE ARKStep explicit Runge-Kutta, any ERK table (default Bogacki-Shampine 3(2))",
+     {true, false, false, false, false}},
+    {"arkode-dirk", ArkodeKind::diagonally_implicit, "implicit",
+     "ARKODE ARKStep diagonally implicit Runge-Kutta, any DIRK table (default KVAERNO_4_2_3)",
+     {true, true, true, false, false}},
+    {"arkode-imex", ArkodeKind::imex, "imex",
+     "ARKODE ARKStep IMEX: springs implicit, gravity, air and collision explicit",
+     {true, true, true, false, true}},
+};
+
 // The ARKODE kind of an integrator name, or nothing for our own integrators.
 std::optional<ArkodeKind> arkode_kind(const std::string& name) {
-  if (name == "arkode-erk") return ArkodeKind::explicit_rk;
-  if (name == "arkode-dirk") return ArkodeKind::diagonally_implicit;
-  if (name == "arkode-imex") return ArkodeKind::imex;
+  for (const ArkodeIntegrator& a : arkode_integrators)
+    if (name == a.name) return a.kind;
   return std::nullopt;
 }
 
 const char* integrator_of(ArkodeKind kind) {
-  switch (kind) {
-    case ArkodeKind::explicit_rk: return "arkode-erk";
-    case ArkodeKind::diagonally_implicit: return "arkode-dirk";
-    case ArkodeKind::imex: return "arkode-imex";
-  }
+  for (const ArkodeIntegrator& a : arkode_integrators)
+    if (a.kind == kind) return a.name;
   return "";
 }
 
@@ -46,7 +66,7 @@ std::unique_ptr<Integrator> make_arkode_stepper(ClothSystem& system,
 // The integrators whose keys are IntegratorOptions' named fields (docs/integrators.md); the
 // later ones declare their own keys in their folders.
 std::vector<IntegratorDeclaration> built_in_declarations() {
-  return {
+  std::vector<IntegratorDeclaration> all = {
       {"leapfrog", "explicit", 2, false, "the paper's leap-frog (kick-drift-kick form)", {},
        [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
          return std::make_unique<Leapfrog>(system, options.dt);
@@ -60,17 +80,17 @@ std::vector<IntegratorDeclaration> built_in_declarations() {
        {},
        [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
          return std::make_unique<ImplicitEuler>(system, options);
-       }},
-      {"arkode-erk", "explicit", 3, true,
-       "ARKODE ARKStep explicit Runge-Kutta, any ERK table (default Bogacki-Shampine 3(2))", {},
-       make_arkode_stepper},
-      {"arkode-dirk", "implicit", 3, true,
-       "ARKODE ARKStep diagonally implicit Runge-Kutta, any DIRK table (default KVAERNO_4_2_3)",
-       {}, make_arkode_stepper},
-      {"arkode-imex", "imex", 3, true,
-       "ARKODE ARKStep IMEX: springs implicit, gravity, air and collision explicit", {},
-       make_arkode_stepper},
+       },
+       // pcg-multigrid, measured on the draped-cloth benchmark (docs/integrators.md): the
+       // multigrid cycle pays for itself at implicit-euler's large steps (90 -> 9 CG iterations
+       // at 1/30 s); ARKODE's adaptive steps there are microseconds, S is then close to M, and
+       // block Jacobi is cheaper. 1e-3: integrator_options.hpp, default_linear_tolerance.
+       {false, false, true, true, false, "pcg-multigrid", 1e-3}},
   };
+  for (const ArkodeIntegrator& a : arkode_integrators)
+    all.push_back(
+        {a.name, a.family, 3, true, a.description, {}, make_arkode_stepper, a.named_keys});
+  return all;
 }
 
 }  // namespace
@@ -80,7 +100,7 @@ const std::vector<IntegratorDeclaration>& integrators() {
     std::vector<IntegratorDeclaration> all = built_in_declarations();
     // Each later integrator's folder declares it (integrator_declaration.hpp).
     for (IntegratorDeclaration (*declare)() : std::initializer_list<IntegratorDeclaration (*)()>{
-             &projective_dynamics_declaration})
+             &bdf2_declaration, &projective_dynamics_declaration})
       all.push_back(declare());
     return all;
   }();

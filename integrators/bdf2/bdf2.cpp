@@ -1,0 +1,63 @@
+#include "integrators/bdf2/bdf2.hpp"
+
+namespace drape {
+
+namespace {
+
+// The largest ratio w = h_{n+1} / h_n of the history's spacing that the variable-step formula
+// is given: BDF2 stays zero-stable for ratios below 1 + sqrt(2) (Grigorieff 1983; Hairer,
+// Norsett and Wanner, "Solving ODEs I", section III.5), and 2 keeps a margin.
+constexpr double max_step_ratio = 2.0;
+
+}  // namespace
+
+Bdf2::Bdf2(ClothSystem& system, const IntegratorOptions& options)
+    : Integrator(system),
+      m_dt(options.dt),
+      m_solver(system, *reduced_solve_named(linear_solver_of(options)), ForceSplit::all,
+               linear_tolerance_of(options), options.max_linear_iters),
+      m_linearised(system, m_solver) {}
+
+void Bdf2::reset(double t, const Eigen::VectorXd& y) {
+  Integrator::reset(t, y);
+  m_has_history = false;  // the constraints changed: the next step is implicit Euler's
+}
+
+double Bdf2::step(double t_stop) {
+  const double t_next = fixed_step_end(m_dt, m_t, t_stop);
+  const double h = t_next - m_t;
+  m_start = m_y;
+  if (!m_has_history) {
+    m_linearised.take(m_t, h, h, nullptr, m_y, m_counters);
+  } else {
+    const double w = h / (m_t - m_previous_t);
+    m_history_term = (w * w / (1.0 + 2.0 * w)) * (m_y - m_previous);
+    m_linearised.take(m_t, h, h * (1.0 + w) / (1.0 + 2.0 * w), &m_history_term, m_y,
+                      m_counters);
+  }
+  m_system.project(t_next, positions(), velocities());
+  // A step cut short (a sliver before an output or event time) is not kept as the history's
+  // spacing: the next full step would see a ratio w far above max_step_ratio. The older point
+  // stays, so the spacing only grows and w stays at most max_step_ratio; without history the
+  // next step is implicit Euler's again.
+  if (h * max_step_ratio >= m_dt) {
+    std::swap(m_previous, m_start);
+    m_previous_t = m_t;
+    m_has_history = true;
+  }
+  return accept_fixed_step(t_next);
+}
+
+IntegratorDeclaration bdf2_declaration() {
+  return {"bdf2", "implicit", 2, false,
+          "Choi-Ko linearised BDF2 (one solve a step), CG or sparse LDLT on the 3N velocity "
+          "system",
+          {},
+          [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
+            return std::make_unique<Bdf2>(system, options);
+          },
+          // implicit-euler's linear-solver keys and defaults (docs/integrators/bdf2.md, "Keys")
+          {false, false, true, false, false, "pcg-multigrid", 1e-3}};
+}
+
+}  // namespace drape

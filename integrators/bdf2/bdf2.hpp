@@ -1,0 +1,46 @@
+#pragma once
+#include "integrators/interface/integrator.hpp"
+#include "integrators/interface/integrator_declaration.hpp"
+#include "integrators/interface/integrator_options.hpp"
+#include "integrators/newton/linearised_step.hpp"
+#include "integrators/newton/reduced_newton_solver.hpp"
+
+namespace drape {
+
+/// Choi and Ko's cloth integrator (2002, "Stable but responsive cloth", SIGGRAPH, section 3):
+/// the second-order backward differentiation formula
+///   x_{n+1} - 4/3 x_n + 1/3 x_{n-1} = 2/3 h v_{n+1},
+///   v_{n+1} - 4/3 v_n + 1/3 v_{n-1} = 2/3 h M^-1 F(x_{n+1}, v_{n+1}),
+/// linearised once about (x_n, v_n): one solve a step of the 3N velocity system
+///   (M - 2/3 h D - 4/9 h^2 K) dv = M r_v + 2/3 h K r_x,
+///   r = 2/3 h f(y_n) + (y_n - y_{n-1}) / 3,   dx = r_x + 2/3 h dv,
+/// with the definite Jacobian and the linear solvers of implicit-euler (linearised_step.hpp).
+/// Steps of unequal size (one cut short by an output or event time) use the variable-step
+/// formula (Hairer, Norsett and Wanner, "Solving ODEs I", section III.5): with
+/// w = h_{n+1} / h_n, gamma = h_{n+1} (1 + w) / (1 + 2w) and d = w^2 / (1 + 2w) (y_n - y_{n-1}).
+/// Started, and restarted at every reset() (events), by one linearised implicit Euler step.
+/// Second order (the linearisation's error is third order locally where the definite Jacobian
+/// is the exact one), A-stable for the linear problem; one force evaluation and one Jacobian
+/// per step. Fixed particles are prescribed; then the projection of docs/model.md section 5.
+class Bdf2 final : public Integrator {
+ public:
+  /// Reads dt, linear_solver, linear_tolerance and max_linear_iters from `options`.
+  Bdf2(ClothSystem& system, const IntegratorOptions& options);
+  void reset(double t, const Eigen::VectorXd& y) override;
+  double step(double t_stop) override;
+
+ private:
+  double m_dt;
+  ReducedNewtonSolver m_solver;
+  LinearisedStep m_linearised;
+  // The history point y_{n-1} at m_previous_t, valid while m_has_history.
+  Eigen::VectorXd m_previous;
+  double m_previous_t = 0.0;
+  bool m_has_history = false;
+  Eigen::VectorXd m_start, m_history_term;
+};
+
+/// bdf2's declaration for the registry (integrator_declaration.hpp).
+IntegratorDeclaration bdf2_declaration();
+
+}  // namespace drape
