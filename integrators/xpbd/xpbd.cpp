@@ -44,7 +44,7 @@ Xpbd::Xpbd(ClothSystem& system, const IntegratorOptions& options)
   m_w_second.resize(count);
   m_weight.resize(count);
   m_split_weight.resize(count);
-  m_contact_share.resize(n);
+  m_split_inverse_mass.resize(n);
   m_previous.resize(3 * n);
   m_correction.resize(3 * n);
   m_lambda.resize(count);
@@ -64,18 +64,17 @@ void Xpbd::reset(double t, const Eigen::VectorXd& y) {
   }
   // Constraints touching each particle (its springs and its contact), for Jacobi's mass
   // splitting.
-  m_contact_share = Eigen::ArrayXd::Constant(n, m_system.dummy() ? 1.0 : 0.0);
+  Eigen::ArrayXd touching = Eigen::ArrayXd::Constant(n, m_system.dummy() ? 1.0 : 0.0);
   for (Eigen::Index e = 0; e < m_first.size(); ++e) {
-    m_contact_share[m_first[e]] += 1.0;
-    m_contact_share[m_second[e]] += 1.0;
+    touching[m_first[e]] += 1.0;
+    touching[m_second[e]] += 1.0;
     m_w_first[e] = m_inverse_mass[m_first[e]];
     m_w_second[e] = m_inverse_mass[m_second[e]];
   }
   m_weight = m_w_first + m_w_second;
   for (Eigen::Index e = 0; e < m_first.size(); ++e)
-    m_split_weight[e] = m_contact_share[m_first[e]] * m_w_first[e] +
-                        m_contact_share[m_second[e]] * m_w_second[e];
-  m_contact_share *= m_inverse_mass;
+    m_split_weight[e] = touching[m_first[e]] * m_w_first[e] + touching[m_second[e]] * m_w_second[e];
+  m_split_inverse_mass = touching * m_inverse_mass;
 }
 
 double Xpbd::step(double t_stop) {
@@ -99,7 +98,8 @@ void Xpbd::substep(double t_sub, double h) {
   // Air damping by backward Euler on the velocity alone, then gravity: (v + h g) / (1 + h c / m)
   // would also shrink the kick that a resting cloth's constraints must undo, and leave it at
   // rest under the weight m g / (1 + h c / m).
-  const double air = 1.0 / (1.0 + h * m_system.cloth().params.damping_air / m_system.particle_mass());
+  const double air =
+      1.0 / (1.0 + h * m_system.cloth().params.damping_air / m_system.particle_mass());
   for (const int i : m_free) {
     v.segment<3>(3 * i) = air * v.segment<3>(3 * i) + gravity_kick;
     x.segment<3>(3 * i) += h * v.segment<3>(3 * i);
@@ -182,7 +182,7 @@ void Xpbd::sweep_gauss_seidel(double inv_h2, double inv_h) {
 // Gauss-Seidel's.
 void Xpbd::sweep_jacobi(double inv_h2, double inv_h) {
   m_correction.setZero();
-  sweep(m_y.data(), m_correction.data(), m_split_weight, m_contact_share, inv_h2, inv_h);
+  sweep(m_y.data(), m_correction.data(), m_split_weight, m_split_inverse_mass, inv_h2, inv_h);
   positions() += m_correction;
 }
 

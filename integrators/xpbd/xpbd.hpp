@@ -58,7 +58,7 @@ class Xpbd final : public Integrator {
   Eigen::ArrayXd m_w_first, m_w_second;               // per spring
   Eigen::ArrayXd m_weight;         // per spring, w_i + w_j
   Eigen::ArrayXd m_split_weight;   // per spring, Jacobi: n_i w_i + n_j w_j
-  Eigen::ArrayXd m_contact_share;  // per particle, Jacobi: n_i w_i
+  Eigen::ArrayXd m_split_inverse_mass;  // per particle, Jacobi: n_i w_i
   std::vector<int> m_free;  // free particles, ascending
   // Substep scratch, sized once.
   Eigen::VectorXd m_previous;    // 3N, x at the substep's start
