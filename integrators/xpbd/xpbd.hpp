@@ -18,7 +18,7 @@ namespace drape {
 /// (xpbd_constraints.hpp). After the step, the model's projection (docs/model.md section 5).
 /// Sweeps: `gauss-seidel` over the springs in their colour order (colour_springs), then the
 /// contacts; `jacobi` every constraint from one iterate with mass splitting (a particle of n
-/// constraints weighs n w in each). Converged, a substep is backward Euler of
+/// constraints has inverse mass n w in each). Converged, a substep is backward Euler of
 /// the springs and contacts up to XPBD's dropped residual (docs/integrators/xpbd.md).
 class Xpbd final : public Integrator {
  public:
