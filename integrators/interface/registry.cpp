@@ -10,6 +10,7 @@
 #include "integrators/newton/reduced_newton_solver.hpp"
 #include "integrators/projective_dynamics/projective_dynamics.hpp"
 #include "integrators/explicit/symplectic_euler.hpp"
+#include "integrators/xpbd/xpbd.hpp"
 
 namespace drape {
 
@@ -100,7 +101,7 @@ const std::vector<IntegratorDeclaration>& integrators() {
     std::vector<IntegratorDeclaration> all = built_in_declarations();
     // Each later integrator's folder declares it (integrator_declaration.hpp).
     for (IntegratorDeclaration (*declare)() : std::initializer_list<IntegratorDeclaration (*)()>{
-             &bdf2_declaration, &projective_dynamics_declaration})
+             &xpbd_declaration, &projective_dynamics_declaration, &bdf2_declaration})
       all.push_back(declare());
     return all;
   }();
