@@ -46,12 +46,15 @@ bool InteractiveSimulation::advance(double t, const std::function<bool()>& keep_
     paused = keep_going && !keep_going();
     return !paused;
   };
-  while (true) {
+  for (bool held_back = false;; held_back = true) {
     double target = t;
     if (m_live_hands) {
       // As the live loop does each turn: the latest hands sampled ahead, the advance held
-      // before the stretch of the track that the next sample can still change.
-      m_live_hands->sample(simulation.time(), t, m_run->input()->track);
+      // before the stretch of the track that the next sample can still change. A turn here is
+      // a hand set (a sample each step would make the track a staircase of 0.2 ms frames) or
+      // an advance the track holds back (a sample moves its limit on).
+      if (m_hands_set || held_back) m_live_hands->sample(simulation.time(), t, m_run->input()->track);
+      m_hands_set = false;
       target = std::min(t, m_live_hands->limit());
     }
     const bool running = simulation.advance(target, asked);
@@ -98,6 +101,7 @@ void InteractiveSimulation::set_hand(Hand hand, const std::optional<Vec3>& posit
   if (position) check_hand_position(*position, "Simulation.set_hand", hand_name(hand));
   m_live_hands->set(hand, position ? std::optional<HandSample>(HandSample{*position, false})
                                    : std::nullopt);
+  m_hands_set = true;
 }
 
 int InteractiveSimulation::hold_candidate(Hand hand) const {

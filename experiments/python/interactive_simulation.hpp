@@ -64,6 +64,7 @@ class InteractiveSimulation {
   std::unique_ptr<SceneSimulation> m_run;
   std::unique_ptr<LiveHands> m_live_hands;
   bool m_started = false;
+  bool m_hands_set = false;  ///< set_hand() was called since the last sample of the live hands
 };
 
 }  // namespace drape

@@ -7,6 +7,7 @@
 #include "core/scene/input_error.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/python/python_json.hpp"
+#include "experiments/run/scene_simulation.hpp"
 
 namespace py = pybind11;
 
@@ -40,10 +41,14 @@ Overrides overrides_of(py::handle overrides) {
 
 // Reads the scene with `use`; an error in a value an override gave names that override, as
 // the command line names its --set argument (with_command_line_overrides, scene.hpp).
+// The integrator's options are checked here too, not first when a Simulation is built: the
+// command line's errors in a --set value of the integrator name that --set (scene.hpp).
 template <class Read>
 std::shared_ptr<Scene> read_with(const std::string& file, const Overrides& overrides, Read read) {
   try {
-    return std::make_shared<Scene>(read(overrides.assignments));
+    auto scene = std::make_shared<Scene>(read(overrides.assignments));
+    checked_integrator_options(*scene);
+    return scene;
   } catch (const InputError& e) {
     std::optional<std::size_t> k;
     if (e.file() == "--set") {

@@ -19,3 +19,10 @@ def drapelab_exe():
 def scene(name, **overrides):
     """A shipped scene with `overrides` ({"key.path": value})."""
     return drapelab.load_scene(SCENES / name, overrides=overrides)
+
+
+def child_env():
+    """The environment of a child Python that imports the drapelab this one imported."""
+    paths = [str(pathlib.Path(drapelab.__file__).resolve().parents[1]),
+             str(pathlib.Path(drapelab._core.__file__).resolve().parent)]
+    return dict(os.environ, PYTHONPATH=os.pathsep.join(paths))

@@ -16,8 +16,8 @@ def test_example_measures_less_vibration_with_implicit_euler(tmp_path):
                  for line in done.stdout.splitlines() if "mm RMS" in line}
     assert set(vibration) == {"leap-frog, 0.2 ms", "implicit Euler, 1/30 s"}
     leapfrog, implicit = vibration["leap-frog, 0.2 ms"], vibration["implicit Euler, 1/30 s"]
-    # docs/findings.md: 8-12 mm after a hold, cut 6-10 fold by one-solve implicit Euler at 1/30 s
-    # (over the findings' window; this one is shorter, so only the order is asserted).
-    assert 1.0 < leapfrog < 30.0
+    # docs/findings.md: 8-12 mm after a hold (11.3 +- 0.5 mm on combination 4), cut 6-10 fold
+    # by one-solve implicit Euler at 1/30 s over ensembles; one run, so a margin on both.
+    assert 8.0 < leapfrog < 16.0
     assert implicit < leapfrog / 3
     assert figure.stat().st_size > 10000

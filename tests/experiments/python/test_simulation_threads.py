@@ -9,7 +9,7 @@ import threading
 import numpy as np
 
 import drapelab
-from conftest import SCENES, scene
+from conftest import SCENES, child_env, scene
 
 
 def test_another_thread_runs_while_advance_steps():
@@ -51,7 +51,7 @@ except KeyboardInterrupt:
     print("interrupted", flush=True)
 """
     child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE, text=True, env=os.environ)
+                             stderr=subprocess.PIPE, text=True, env=child_env())
     assert child.stdout.readline().strip() == "stepping"
     threading.Event().wait(0.3)
     child.send_signal(signal.SIGINT)
