@@ -49,7 +49,9 @@ def experiment(definition, out, jobs=2, overwrite=False):
     process, `jobs` at a time; docs/experiments.md) and returns its results table (a pandas
     DataFrame, one row per run). Bad input raises InputError; Ctrl-C stops the experiment's runs."""
     if not isinstance(jobs, int) or isinstance(jobs, bool) or not 1 <= jobs <= 1024:
-        raise InputError(f"experiment: jobs: expected an integer in [1, 1024], got {jobs!r}")
+        error = InputError(f"experiment: jobs: expected an integer in [1, 1024], got {jobs!r}")
+        error.file, error.field, error.message = "experiment", "jobs", str(error)
+        raise error
     command = [_core.DRAPELAB_EXECUTABLE, "experiment", os.fspath(definition), "--out",
                os.fspath(out), "--jobs", str(jobs), "--no-progress"]
     if overwrite:
@@ -58,8 +60,10 @@ def experiment(definition, out, jobs=2, overwrite=False):
                           check=False)
     message = done.stderr.strip().splitlines()
     if done.returncode == 2:
-        raise InputError(message[-1].removeprefix("drapelab: error: ") if message else
-                         f"experiment {definition}: bad input")
+        error = InputError(message[-1].removeprefix("drapelab: error: ") if message else
+                           f"experiment {definition}: bad input")
+        error.file, error.field, error.message = os.fspath(definition), "", str(error)
+        raise error
     if done.returncode != 0:
         raise RuntimeError(f"drapelab experiment {definition} ended with status "
                            f"{done.returncode}: " + "\n".join(message[-5:]))

@@ -1,5 +1,6 @@
 """Simulation.run writes drapelab run's folder; advance in pieces steps as one advance does; the
 state arrays are read-only views of the state (docs/python.md)."""
+import json
 import os
 import subprocess
 
@@ -123,3 +124,24 @@ def test_catalogues_list_what_the_program_lists(drapelab_exe):
                              text=True).stdout
     import json
     assert drapelab.fabrics() == json.loads(fabrics)
+
+
+def test_experiment_runs_the_plan_and_returns_its_results(tmp_path):
+    # A 3 x 3 cloth from one pin, two steps swept (tests/analysis/ensemble_statistics_check.py).
+    (tmp_path / "cloth.json").write_text(json.dumps({
+        "cloth": {"rows": 3, "cols": 3, "spacing": 0.02, "origin": [0, 1.4, 0],
+                  "particle_mass": 0.001, "k_structural": 20},
+        "pins": [[0, 0]], "dummy": None, "integrator": {"name": "leapfrog", "dt": 0.001},
+        "duration": 0.05}))
+    (tmp_path / "exp.json").write_text(json.dumps({
+        "name": "tiny", "question": "Does drapelab.experiment run the plan?",
+        "scenes": ["cloth.json"], "sweep": {"integrator.dt": [0.001, 0.0005]}}))
+    results = drapelab.experiment(tmp_path / "exp.json", tmp_path / "out", jobs=2)
+    assert results["status"].tolist() == ["ok", "ok"]
+    assert sorted(zip(results["integrator.dt"], results["steps"])) == [(0.0005, 100), (0.001, 50)]
+    # Each run is the run of its scene: the same final state as a Simulation of it.
+    sim = drapelab.Simulation(drapelab.load_scene(tmp_path / "cloth.json"))
+    sim.advance(0.05)
+    run_dir = tmp_path / "out" / results.loc[results["integrator.dt"] == 0.001, "run_dir"].iloc[0]
+    state = np.loadtxt(run_dir / "state.csv", delimiter=",", skiprows=1)  # index,row,col,x,y,z,...
+    np.testing.assert_array_equal(state[:, 3:6], sim.positions)  # written to round-trip
