@@ -4,6 +4,9 @@
     drapeanalysis.vibration_rms(t, x, cutoff_hz)      # motion above the cutoff [m]
     drapeanalysis.vibration_cutoff(summary)            # the cutoff from a run's model [Hz]
     drapeanalysis.summarise(df, ["integrator"], ["vibration_rms_final"])
+
+New code imports it as drapelab.analysis, the same module (docs/python.md); the name
+drapeanalysis stays for the scripts and tests that use it.
 """
 from .results_file import results_table
 from .runfiles import (read_energy, read_hands, read_json, read_state, read_summary, read_table,

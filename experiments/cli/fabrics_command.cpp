@@ -27,11 +27,15 @@ nlohmann::json fabric_json(const Fabric& f) {
 
 }  // namespace
 
+nlohmann::json fabrics_json() {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Fabric& f : fabrics()) out.push_back(fabric_json(f));
+  return out;
+}
+
 int list_fabrics(bool json) {
   if (json) {
-    nlohmann::json out = nlohmann::json::array();
-    for (const Fabric& f : fabrics()) out.push_back(fabric_json(f));
-    fmt::print("{}\n", out.dump(2));
+    fmt::print("{}\n", fabrics_json().dump(2));
     return 0;
   }
   fmt::print("{:<18} {:<6} {:>10} {:>10} {:>9} {:>10}  {}\n", "fabric", "kind", "rho_A", "C11",

@@ -5,6 +5,9 @@
 
 #include <algorithm>
 
+#include "core/input/input_config.hpp"
+#include "integrators/interface/integrator_options.hpp"
+
 namespace drape {
 
 namespace {
@@ -140,6 +143,21 @@ std::vector<HandFrame> LiveHands::recording() const {
       all.insert(at, key);
   }
   return all;
+}
+
+std::unique_ptr<LiveHands> live_hands_for(HandInput& input, const IntegratorOptions& options) {
+  std::vector<HandFrame> keys;
+  for (const KeyEvent& k : input.track.keys()) {
+    keys.emplace_back();
+    keys.back().t = k.t;
+    keys.back().keys = {k.key};
+  }
+  // The loop may end a step past its target by up to one step (Simulation::advance); an
+  // adaptive method's steps are not known ahead, 10 ms is taken for them (docs/live.md).
+  const double margin = options.adaptive ? 0.01 : options.dt;
+  auto hands = std::make_unique<LiveHands>(input.config.track, std::move(keys), margin);
+  hands->sample(0.0, 0.0, input.track);
+  return hands;
 }
 
 }  // namespace drape

@@ -4,6 +4,7 @@
 // the simulation, so that the track never changes where the simulation has already been and a
 // replay of the recorded frames gives the same run.
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -12,6 +13,9 @@
 #include "core/input/hand_track.hpp"
 
 namespace drape {
+
+struct HandInput;
+struct IntegratorOptions;
 
 /// Live hand samples in the scene frame and scene time, and the track built from them.
 class LiveHands {
@@ -61,5 +65,10 @@ class LiveHands {
   int m_refused = 0;  ///< frames left out in a row since the last one taken
   double m_limit = std::numeric_limits<double>::infinity();
 };
+
+/// The live hands of a run whose recorded hands give way to live ones (the scene's keys stay, at
+/// their scene times), sampled once at t = 0 into `input`'s track; `options` are the run's
+/// integrator's (the margin: its fixed dt, 10 ms for an adaptive method).
+std::unique_ptr<LiveHands> live_hands_for(HandInput& input, const IntegratorOptions& options);
 
 }  // namespace drape

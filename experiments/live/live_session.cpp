@@ -102,20 +102,9 @@ LiveSession::LiveSession(Scene scene, std::filesystem::path out_dir, bool live_h
                      "is measured by drapelab run and experiments, not in a live session");
   m_run = std::make_unique<SceneSimulation>(m_scene);
   HandInput& input = *m_run->input();
-  if (live_hands || !has_hand_samples(input.track)) {
-    // The scene's keys stay (at their scene times); its recorded hands, if any, give way.
-    std::vector<HandFrame> keys;
-    for (const KeyEvent& k : input.track.keys()) {
-      keys.emplace_back();
-      keys.back().t = k.t;
-      keys.back().keys = {k.key};
-    }
-    // The loop may end a step past its target by up to one step (Simulation::advance); an
-    // adaptive method's steps are not known ahead, 10 ms is taken for them (docs/live.md).
-    const double margin = m_run->options().adaptive ? 0.01 : m_run->options().dt;
-    m_live_hands = std::make_unique<LiveHands>(input.config.track, std::move(keys), margin);
-    m_live_hands->sample(0.0, 0.0, input.track);
-  }
+  // The scene's keys stay (at their scene times); its recorded hands, if any, give way.
+  if (live_hands || !has_hand_samples(input.track))
+    m_live_hands = live_hands_for(input, m_run->options());
   m_scene_json = page_scene_json(m_run->system(), m_scene, m_live_hands != nullptr);
   // Built (and so validated) first; then no file of an earlier run may stay beside this one's.
   clear_run_folder(m_out_dir);

@@ -90,6 +90,12 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
   // Taken before the run, so `date` is when it started.
   const nlohmann::json provenance = run_provenance();
   SceneSimulation run(scene);
+  return run_scene(run, out_dir, provenance, observer);
+}
+
+RunOutcome run_scene(SceneSimulation& run, const std::filesystem::path& out_dir,
+                     const nlohmann::json& provenance, SimulationObserver* observer) {
+  const Scene& scene = run.scene();
   Simulation& simulation = run.simulation();
   const ClothSystem& system = run.system();
   std::optional<ReferenceRestarts> restarts;

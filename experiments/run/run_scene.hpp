@@ -40,5 +40,9 @@ nlohmann::json run_summary(const SceneSimulation& run, const EnergyWriter& energ
 /// watches the run too (an experiment's progress display).
 RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
                      SimulationObserver* observer = nullptr);
+/// run_scene for a run built already and not stepped yet (the Python API's Simulation.run),
+/// with the provenance taken when it was asked for.
+RunOutcome run_scene(SceneSimulation& run, const std::filesystem::path& out_dir,
+                     const nlohmann::json& provenance, SimulationObserver* observer = nullptr);
 
 }  // namespace drape

@@ -76,6 +76,14 @@ void Simulation::branch_from(const Simulation& other) {
   m_status = RunStatus{};
 }
 
+void Simulation::set_state(Eigen::VectorXd y) {
+  const Eigen::Index n3 = y.size() / 2;
+  m_system.project(m_t, y.head(n3), y.tail(n3));
+  if (m_keep_step_ends) m_y0 = m_y1 = y;
+  m_integrator.reset(m_t, y);
+  m_divergence.account_for(m_system, energy_of(m_system, y));
+}
+
 bool Simulation::at_end() const { return m_t >= m_settings.duration - end_tolerance(m_settings.duration); }
 
 double Simulation::next_landing_time() const {

@@ -85,6 +85,9 @@ class Simulation {
   /// Keeps each step's two end states so that interpolate() works without an interpolating
   /// observer; it never changes a step.
   void keep_step_ends() { m_keep_step_ends = true; }
+  /// Replaces the state at time() (a program that sets positions or velocities, docs/python.md):
+  /// projected as the start state is, and the integrator restarts there as at an event.
+  void set_state(Eigen::VectorXd y);
 
   double time() const { return m_t; }
   /// The state at time(), after any event applied there.
