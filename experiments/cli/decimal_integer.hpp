@@ -4,6 +4,7 @@
 // command line): this transform (Option::transform; check() would not let it change the text)
 // runs on the text before CLI11 converts it, refuses anything but digits and drops leading
 // zeros, which base 0 would read as octal.
+#include <CLI/Error.hpp>  // Validators.hpp uses ValidationError without including it (CLI11 2.1)
 #include <CLI/Validators.hpp>
 
 #include <string>

@@ -31,6 +31,22 @@ TEST(ExperimentFile, CasesFromASharedFileAreTheInlineCases) {
     EXPECT_EQ(plan[k].assignments(), expected[k].assignments());
     EXPECT_EQ(plan[k].id, expected[k].id);
   }
+  // A definition in a topic folder (experiments/definitions/investigations/<topic>/) reaches the
+  // shared list and its scene through "..": the same runs as the definition beside them.
+  const fs::path topic = dir / "investigations" / "topic";
+  fs::create_directories(topic);
+  json nested = shared;
+  nested["scenes"] = json::array({"../../cloth.json"});
+  nested["cases"] = "../../cases/two.json";
+  const auto nested_plan = drape::expand_runs(parse(nested, topic));
+  ASSERT_EQ(nested_plan.size(), expected.size());
+  for (std::size_t k = 0; k < nested_plan.size(); ++k) {
+    EXPECT_EQ(nested_plan[k].assignments(), expected[k].assignments());
+    EXPECT_EQ(fs::canonical(nested_plan[k].scene_path), fs::canonical(expected[k].scene_path));
+    EXPECT_EQ(nested_plan[k].scene_digest, expected[k].scene_digest);
+  }
+  nested["cases"] = "../cases/two.json";  // one level short: names the field and the file
+  EXPECT_EQ(error_field(nested, topic), "cases");
 
   for (const char* bad : {"cases/missing.json", "cases", "", "/etc/hostname"}) {
     shared["cases"] = bad;
