@@ -8,6 +8,7 @@
 #include "integrators/newton/line_search_newton.hpp"
 #include "integrators/newton/reduced_newton_solver.hpp"
 #include "integrators/explicit/symplectic_euler.hpp"
+#include "integrators/vbd/vbd.hpp"
 
 namespace drape {
 
@@ -78,7 +79,7 @@ const std::vector<IntegratorDeclaration>& integrators() {
   static const std::vector<IntegratorDeclaration> list = [] {
     std::vector<IntegratorDeclaration> all = built_in_declarations();
     // Each later integrator's folder declares it (integrator_declaration.hpp).
-    for (IntegratorDeclaration (*declare)() : std::initializer_list<IntegratorDeclaration (*)()>{})
+    for (IntegratorDeclaration (*declare)() : std::initializer_list<IntegratorDeclaration (*)()>{&vbd_declaration})
       all.push_back(declare());
     return all;
   }();

@@ -30,8 +30,8 @@ TEST(Registry, ListsEveryIntegrator) {
   for (const char* name :
        {"leapfrog", "symplectic-euler", "implicit-euler", "arkode-erk", "arkode-dirk", "arkode-imex"})
     EXPECT_NE(find_integrator(name), nullptr) << name;
-  EXPECT_EQ(find_integrator("arkode-dirk")->kind, "implicit");
-  EXPECT_EQ(find_integrator("arkode-imex")->kind, "imex");
+  EXPECT_EQ(find_integrator("arkode-dirk")->family, "implicit");
+  EXPECT_EQ(find_integrator("arkode-imex")->family, "imex");
   EXPECT_TRUE(find_integrator("arkode-erk")->adaptive);
   EXPECT_FALSE(find_integrator("implicit-euler")->adaptive);
 }

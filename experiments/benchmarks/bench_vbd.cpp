@@ -1,0 +1,115 @@
+// drapelab_bench: vbd's frame (one 1/30 s step) at 10 and 100 sweeps on the free sheet and on
+// the sheet draped on the dress form with the smooth contact model, at 32 x 32, 64 x 64 and
+// 128 x 128, top row pinned; and the cost of reaching converged backward Euler's accuracy on
+// the draped sheet's first frame with vbd and with the line-search Newton (implicit-euler,
+// solve = converged). See docs/integrators/vbd.md.
+#include <benchmark/benchmark.h>
+
+#include "experiments/benchmarks/draped_cloth.hpp"
+#include "integrators/interface/registry.hpp"
+
+namespace drape {
+namespace {
+
+constexpr double frame = 1.0 / 30.0;
+
+std::unique_ptr<ClothSystem> pinned_sheet(int n, bool draped, Eigen::VectorXd& y) {
+  auto system = bench::draped_cloth(n, y, draped, CollisionModel::smooth);
+  for (int col = 0; col < n; ++col) system->constraints().fix_at(col, y.segment<3>(3 * col));
+  return system;
+}
+
+IntegratorOptions vbd_options(long iterations) {
+  IntegratorOptions o;
+  o.name = "vbd";
+  o.dt = frame;
+  o.settings = {{"iterations", iterations}};
+  return o;
+}
+
+IntegratorOptions newton_options(double rtol, double atol) {
+  IntegratorOptions o;
+  o.name = "implicit-euler";
+  o.dt = frame;
+  o.solve = "converged";
+  o.rtol = rtol;
+  o.atol = atol;
+  o.max_newton_iters = 500;
+  return o;
+}
+
+// One frame per benchmark iteration, continuing from the last.
+void vbd_frames(benchmark::State& state, bool draped, long iterations) {
+  Eigen::VectorXd y;
+  auto system = pinned_sheet(static_cast<int>(state.range(0)), draped, y);
+  auto method = make_integrator(vbd_options(iterations), *system);
+  method->reset(0.0, y);
+  for (auto _ : state) method->step(1e9);
+  state.counters["us_per_sweep"] = benchmark::Counter(
+      static_cast<double>(method->counters().newton_iters) * 1e-6,
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// The first frame from y by `options`: its end state.
+Eigen::VectorXd first_frame(ClothSystem& system, const Eigen::VectorXd& y,
+                            const IntegratorOptions& options) {
+  auto method = make_integrator(options, system);
+  method->reset(0.0, y);
+  method->step(frame);
+  return method->state();
+}
+
+double position_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return (a - b).head(a.size() / 2).lpNorm<Eigen::Infinity>();
+}
+
+// Times the first frame of `options` from y; `error` is its distance to the tight reference.
+void time_first_frame(benchmark::State& state, ClothSystem& system, const Eigen::VectorXd& y,
+                      const IntegratorOptions& options, double error) {
+  for (auto _ : state) benchmark::DoNotOptimize(first_frame(system, y, options).data());
+  state.counters["error_m"] = error;
+}
+
+// Converged backward Euler at the default tolerances (rtol 1e-4, atol 1e-7) against a tight
+// reference (rtol 1e-10, atol 1e-12): its distance e_N. Then vbd with the fewest sweeps, by
+// doubling from 1 up to 2^16, whose frame is as close; both timed.
+void reach_backward_euler(benchmark::State& state, bool with_vbd) {
+  Eigen::VectorXd y;
+  auto system = pinned_sheet(static_cast<int>(state.range(0)), true, y);
+  const Eigen::VectorXd reference = first_frame(*system, y, newton_options(1e-10, 1e-12));
+  const IntegratorOptions newton = newton_options(1e-4, 1e-7);
+  const double target = position_distance(first_frame(*system, y, newton), reference);
+  if (!with_vbd) {
+    time_first_frame(state, *system, y, newton, target);
+    return;
+  }
+  for (long iterations = 1; iterations <= 65536; iterations *= 2) {
+    const IntegratorOptions o = vbd_options(iterations);
+    const double error = position_distance(first_frame(*system, y, o), reference);
+    if (error <= target) {
+      time_first_frame(state, *system, y, o, error);
+      state.counters["iterations"] = static_cast<double>(iterations);
+      return;
+    }
+  }
+  state.SkipWithError("vbd did not reach converged backward Euler's distance in 65536 sweeps");
+}
+
+const bool registered = [] {
+  for (const bool draped : {false, true})
+    for (const long iterations : {10L, 100L})
+      benchmark::RegisterBenchmark(
+          (std::string("BM_VbdFrame/") + (draped ? "draped" : "free") + "/" +
+           std::to_string(iterations)).c_str(),
+          [draped, iterations](benchmark::State& state) { vbd_frames(state, draped, iterations); })
+          ->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
+  for (const bool with_vbd : {false, true})
+    benchmark::RegisterBenchmark(
+        (std::string("BM_ReachBackwardEuler/") + (with_vbd ? "vbd" : "newton")).c_str(),
+        [with_vbd](benchmark::State& state) { reach_backward_euler(state, with_vbd); })
+        ->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
+  return true;
+}();
+
+}  // namespace
+}  // namespace drape
