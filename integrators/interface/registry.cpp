@@ -79,7 +79,8 @@ const std::vector<IntegratorDeclaration>& integrators() {
   static const std::vector<IntegratorDeclaration> list = [] {
     std::vector<IntegratorDeclaration> all = built_in_declarations();
     // Each later integrator's folder declares it (integrator_declaration.hpp).
-    for (IntegratorDeclaration (*declare)() : std::initializer_list<IntegratorDeclaration (*)()>{&vbd_declaration})
+    for (IntegratorDeclaration (*declare)() :
+         std::initializer_list<IntegratorDeclaration (*)()>{&vbd_declaration})
       all.push_back(declare());
     return all;
   }();

@@ -47,9 +47,14 @@ void Vbd::start_positions(double h, double t_next, VecRef x) {
     const Vec3 y = particle(m_x_n, i) + h * particle(m_v_n, i);
     double weight = 1.0;  // of h^2 g
     switch (m_start) {
-      case VbdStart::inertia: break;
-      case VbdStart::previous: particle(x, i) = particle(m_x_n, i); continue;
-      case VbdStart::velocity: weight = 0.0; break;
+      case VbdStart::inertia:
+        break;
+      case VbdStart::previous:
+        particle(x, i) = particle(m_x_n, i);
+        continue;
+      case VbdStart::velocity:
+        weight = 0.0;
+        break;
       case VbdStart::adaptive:
         // The paper's section 3.6: the part of the last step's acceleration along gravity,
         // clamped to [0, |g|], so that a particle resting on the object (acceleration 0) starts
@@ -103,24 +108,24 @@ double Vbd::step(double t_stop) {
 }
 
 IntegratorDeclaration vbd_declaration() {
-  return {"vbd",
-          "optimisation",
-          1,
-          false,
-          "Vertex Block Descent (Chen et al. 2024): Gauss-Seidel 3x3 Newton steps on backward "
-          "Euler's incremental potential",
-          {SettingKey::integer("iterations", 10, 1, 100000,
-                               "Gauss-Seidel sweeps over the particles per step"),
-           SettingKey::choice("init", "adaptive", {"inertia", "previous", "velocity", "adaptive"},
-                              "start of a step's iterations: x_n + h v_n + h^2 g, x_n, "
-                              "x_n + h v_n, or the paper's adaptive acceleration start"),
-           SettingKey::boolean("chebyshev", false,
-                               "Chebyshev acceleration of the sweeps (Wang 2015)"),
-           SettingKey::number("rho", 0.95, 0.0, 1.0,
-                              "Chebyshev's estimate of the sweeps' spectral radius", true, true)},
-          [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
-            return std::make_unique<Vbd>(system, options);
-          }};
+  return {
+      "vbd",
+      "optimisation",
+      1,
+      false,
+      "Vertex Block Descent (Chen et al. 2024): Gauss-Seidel 3x3 Newton steps on backward "
+      "Euler's incremental potential",
+      {SettingKey::integer("iterations", 10, 1, 100000,
+                           "Gauss-Seidel sweeps over the particles per step"),
+       SettingKey::choice("init", "adaptive", {"inertia", "previous", "velocity", "adaptive"},
+                          "start of a step's iterations: x_n + h v_n + h^2 g, x_n, "
+                          "x_n + h v_n, or the paper's adaptive acceleration start"),
+       SettingKey::boolean("chebyshev", false, "Chebyshev acceleration of the sweeps (Wang 2015)"),
+       SettingKey::number("rho", 0.95, 0.0, 1.0,
+                          "Chebyshev's estimate of the sweeps' spectral radius", true, true)},
+      [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
+        return std::make_unique<Vbd>(system, options);
+      }};
 }
 
 }  // namespace drape

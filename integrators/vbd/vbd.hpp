@@ -2,15 +2,13 @@
 // Vertex Block Descent (Chen, Liu, Yang and Yuksel 2024, "Vertex Block Descent", ACM TOG 43(4)):
 // backward Euler's incremental potential G (vertex_block_potential.hpp) minimised by
 // Gauss-Seidel over the particles in graph-colour order, each particle by one Newton step on its
-// 3x3 block, dx_i = H_i^-1 f_i, with the definite block Hessian H_i (>= M / h^2). A step whose
-// change of G is not negative is halved (per-particle backtracking, the paper's optional line
-// search) so that no block step raises G. Fixed particles sit at p(t_{n+1}) throughout. After
+// 3x3 block, dx_i = H_i^-1 f_i, with the definite block Hessian H_i (>= M / h^2). A block step
+// that raises G is halved (per-particle backtracking, the paper's optional line search), so
+// that no block step raises G. Fixed particles sit at p(t_{n+1}) throughout. After
 // `iterations` sweeps (optionally Chebyshev-accelerated, Wang 2015, "A Chebyshev semi-iterative
 // approach for accelerating projective and position-based dynamics", ACM TOG 34(6)),
 // v = (x - x_n) / h and the projection of docs/model.md section 5. As the sweeps go on, the step
 // tends to converged backward Euler (implicit-euler, solve = converged).
-#include <string>
-
 #include "integrators/interface/integrator.hpp"
 #include "integrators/interface/integrator_declaration.hpp"
 #include "integrators/interface/integrator_options.hpp"
@@ -33,7 +31,6 @@ class Vbd final : public Integrator {
   Vbd(ClothSystem& system, const IntegratorOptions& options);
   void reset(double t, const Eigen::VectorXd& y) override;
   double step(double t_stop) override;
-
 
  private:
   /// The free particles' start (m_start) and the fixed ones at p(t_next).

@@ -17,7 +17,9 @@ class VertexBlockDescent {
   explicit VertexBlockDescent(const ClothSystem& system);
 
   /// Starts a step of size h from x_n, v_n (3N each).
-  void begin_step(double h, ConstVecRef x_n, ConstVecRef v_n) { m_potential.begin_step(h, x_n, v_n); }
+  void begin_step(double h, ConstVecRef x_n, ConstVecRef v_n) {
+    m_potential.begin_step(h, x_n, v_n);
+  }
   /// One sweep from x (3N, fixed particles already in place), in place. Freezes the spring
   /// damping directions at x first, so that the sweep descends on one function. Returns the
   /// number of step halvings.

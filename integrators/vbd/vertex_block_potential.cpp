@@ -132,16 +132,16 @@ double VertexBlockPotential::value(ConstVecRef x) const {
     if (fixed[static_cast<std::size_t>(i)]) continue;
     const Vec3 xi = particle(x, i);
     g += m_mass / (2.0 * m_h * m_h) * (xi - particle(m_y, i)).squaredNorm() - m_weight.dot(xi) +
-         m_c_air / (2.0 * m_h) * (xi - particle(m_x_n, i)).squaredNorm() +
-         collision.energy(i, xi);
+         m_c_air / (2.0 * m_h) * (xi - particle(m_x_n, i)).squaredNorm() + collision.energy(i, xi);
   }
   const SpringSet& springs = m_system.cloth().springs;
   for (Eigen::Index e = 0; e < springs.size(); ++e) {
     const int i = springs.first[e], j = springs.second[e];
     g += spring_energy(particle(x, j) - particle(x, i), springs.stiffness[e], springs.rest[e]);
-    const double rate = ((particle(x, j) - particle(m_x_n, j)) - (particle(x, i) - particle(m_x_n, i)))
-                            .dot(m_directions[static_cast<std::size_t>(e)]) /
-                        m_h;
+    const double rate =
+        ((particle(x, j) - particle(m_x_n, j)) - (particle(x, i) - particle(m_x_n, i)))
+            .dot(m_directions[static_cast<std::size_t>(e)]) /
+        m_h;
     g += 0.5 * m_h * m_c_spring * rate * rate;
   }
   return g;

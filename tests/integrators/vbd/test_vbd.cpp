@@ -149,7 +149,8 @@ TEST(Vbd, CountsItsSweeps) {
 }
 
 std::string error_of(const nlohmann::json& o) {
-  return testing::input_error_message([&] { read_integrator_options(o, "scene.json", "integrator"); });
+  return testing::input_error_message(
+      [&] { read_integrator_options(o, "scene.json", "integrator"); });
 }
 
 TEST(Vbd, BadKeysAreInputErrorsNamingTheField) {
@@ -160,7 +161,8 @@ TEST(Vbd, BadKeysAreInputErrorsNamingTheField) {
     return error_of(o);
   };
   EXPECT_EQ(error_of(base), "no error");
-  for (const nlohmann::json& bad : {nlohmann::json(0), nlohmann::json(1000001), nlohmann::json(2.5)})
+  for (const nlohmann::json& bad :
+       {nlohmann::json(0), nlohmann::json(1000001), nlohmann::json(2.5)})
     EXPECT_NE(with("iterations", bad).find("integrator.iterations"), std::string::npos) << bad;
   for (const double bad : {0.0, 1.0, -0.5, 1.5})
     EXPECT_NE(with("rho", bad).find("integrator.rho"), std::string::npos) << bad;

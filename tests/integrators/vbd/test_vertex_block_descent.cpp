@@ -24,8 +24,10 @@ void expect_descent(ClothSystem& s, int sweeps) {
   descent.begin_step(h, x_n, v_n);
   Eigen::VectorXd x = x_n + h * v_n;
   for (int i = 0; i < s.num_particles(); ++i) {
-    if (s.constraints().is_fixed(i)) particle(x, i) = s.constraints().trajectory(i)->position(h);
-    else particle(x, i) += h * h * s.params().gravity;
+    if (s.constraints().is_fixed(i))
+      particle(x, i) = s.constraints().trajectory(i)->position(h);
+    else
+      particle(x, i) += h * h * s.params().gravity;
   }
   VertexBlockPotential& g = descent.potential();
   g.freeze_directions(x);

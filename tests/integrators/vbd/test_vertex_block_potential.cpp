@@ -53,8 +53,9 @@ void expect_block_matches_differences(ClothSystem& s, unsigned seed) {
       gradient[a] = (value_at(ea) - value_at(-ea)) / (2 * eps);
       for (int c = 0; c < 3; ++c) {
         const Vec3 ec = eps * Vec3::Unit(c);
-        hessian(a, c) = (value_at(ea + ec) - value_at(ea - ec) - value_at(-ea + ec) +
-                         value_at(-ea - ec)) / (4 * eps * eps);
+        hessian(a, c) =
+            (value_at(ea + ec) - value_at(ea - ec) - value_at(-ea + ec) + value_at(-ea - ec)) /
+            (4 * eps * eps);
       }
     }
     EXPECT_LT((gradient + b.force).norm(), 1e-6 * b.force.norm() + 1e-9) << "particle " << i;
@@ -65,7 +66,8 @@ void expect_block_matches_differences(ClothSystem& s, unsigned seed) {
     EXPECT_GE(smallest, s.particle_mass() / (h * h) * (1.0 - 1e-12)) << "particle " << i;
     ++checked;
   }
-  EXPECT_EQ(checked, s.num_particles() - static_cast<int>(s.constraints().fixed_particles().size()));
+  EXPECT_EQ(checked,
+            s.num_particles() - static_cast<int>(s.constraints().fixed_particles().size()));
 }
 
 TEST(VertexBlockPotential, BlockMatchesFiniteDifferencesOfThePotential) {
@@ -75,7 +77,8 @@ TEST(VertexBlockPotential, BlockMatchesFiniteDifferencesOfThePotential) {
 
 // energy_change equals the difference of G's values (which it computes without cancellation).
 TEST(VertexBlockPotential, EnergyChangeIsTheDifferenceOfThePotential) {
-  for (auto& s : {testing::swinging_sheet(1.0, 6), testing::cloth_against_sphere(CollisionModel::smooth)}) {
+  for (auto& s :
+       {testing::swinging_sheet(1.0, 6), testing::cloth_against_sphere(CollisionModel::smooth)}) {
     const StepState st = moving_state(*s, 11);
     VertexBlockPotential g(*s);
     g.begin_step(h, st.x_n, st.v_n);
