@@ -117,7 +117,7 @@ IntegratorDeclaration vbd_declaration() {
       "Euler's incremental potential",
       {SettingKey::integer("iterations", 10, 1, 100000,
                            "Gauss-Seidel sweeps over the particles per step"),
-       SettingKey::choice("init", "adaptive", {"inertia", "previous", "velocity", "adaptive"},
+       SettingKey::choice("init", "velocity", {"inertia", "previous", "velocity", "adaptive"},
                           "start of a step's iterations: x_n + h v_n + h^2 g, x_n, "
                           "x_n + h v_n, or the paper's adaptive acceleration start"),
        SettingKey::boolean("chebyshev", false, "Chebyshev acceleration of the sweeps (Wang 2015)"),
