@@ -78,11 +78,12 @@ void time_first_frame(benchmark::State& state, ClothSystem& system, const Eigen:
 
 // Converged backward Euler at its default tolerances (rtol 1e-4, atol 1e-7: it stops once its
 // update's weighted RMS norm, times its rate factor, is at most 0.1) against a tight reference
-// (rtol 1e-10, atol 1e-12); then vbd with the fewest sweeps, by doubling from 1 up to 2^16,
+// (rtol 1e-10, atol 1e-12); then vbd with the fewest sweeps, by doubling from 1 up to 2^14,
 // whose frame is within the same tolerance of the reference (weighted RMS norm <= 0.1); both
 // timed.
 void reach_backward_euler(benchmark::State& state, bool with_vbd) {
   constexpr double rtol = 1e-4, atol = 1e-7, tolerance = 0.1;
+  constexpr long max_sweeps = 16384;
   Eigen::VectorXd y;
   auto system = pinned_sheet(static_cast<int>(state.range(0)), true, y);
   const Eigen::VectorXd reference = first_frame(*system, y, newton_options(1e-10, 1e-12));
@@ -92,16 +93,19 @@ void reach_backward_euler(benchmark::State& state, bool with_vbd) {
     time_first_frame(state, *system, y, newton, error);
     return;
   }
-  for (long iterations = 1; iterations <= 65536; iterations *= 2) {
+  double error = 0.0;
+  for (long iterations = 1; iterations <= max_sweeps; iterations *= 2) {
     const IntegratorOptions o = vbd_options(iterations);
-    const double error = weighted_norm(first_frame(*system, y, o), reference, y, rtol, atol);
+    error = weighted_norm(first_frame(*system, y, o), reference, y, rtol, atol);
     if (error <= tolerance) {
       time_first_frame(state, *system, y, o, error);
       state.counters["iterations"] = static_cast<double>(iterations);
       return;
     }
   }
-  state.SkipWithError("vbd did not reach converged backward Euler's tolerance in 65536 sweeps");
+  state.SkipWithError(("not within tolerance after " + std::to_string(max_sweeps) +
+                       " sweeps: weighted error " + std::to_string(error))
+                          .c_str());
 }
 
 const bool registered = [] {
