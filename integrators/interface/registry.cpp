@@ -11,6 +11,7 @@
 #include "integrators/projective_dynamics/projective_dynamics.hpp"
 #include "integrators/explicit/symplectic_euler.hpp"
 #include "integrators/xpbd/xpbd.hpp"
+#include "integrators/vbd/vbd.hpp"
 
 namespace drape {
 
@@ -101,7 +102,8 @@ const std::vector<IntegratorDeclaration>& integrators() {
     std::vector<IntegratorDeclaration> all = built_in_declarations();
     // Each later integrator's folder declares it (integrator_declaration.hpp).
     for (IntegratorDeclaration (*declare)() : std::initializer_list<IntegratorDeclaration (*)()>{
-             &xpbd_declaration, &projective_dynamics_declaration, &bdf2_declaration})
+             &xpbd_declaration, &projective_dynamics_declaration, &vbd_declaration,
+             &bdf2_declaration})
       all.push_back(declare());
     return all;
   }();
