@@ -104,8 +104,13 @@ def reference_cost(rows, scene):
 
 def _draw_panel(ax, settings, vib_range):
     """One panel: a line per setting through its steps, markers sized by vibration, bars both
-    ways, diverged steps as x on the floor, steps labelled where a setting has several."""
+    ways (the cost's lighter: wall time on a shared machine scatters), diverged steps as x on the
+    floor. Returns the labels to place, (points, colour, texts): a setting's steps where it has
+    several, else its values where its integrator has other settings (same colour and marker)."""
     labelled = []
+    per_integrator = {}
+    for pts in settings.values():
+        per_integrator[pts[0]["integrator"]] = per_integrator.get(pts[0]["integrator"], 0) + 1
     for setting, pts in sorted(settings.items()):
         row = {"integrator": pts[0]["integrator"]}
         color, marker = style.integrator_color(row), style.integrator_marker(row)
@@ -113,16 +118,19 @@ def _draw_panel(ax, settings, vib_range):
         one_step = f", dt={step_text(pts[0]['dt'])}" if len(pts) == 1 else ""
         name = f"{setting}{one_step} (n = {max(p['runs'] for p in pts)})"
         if drawn:
-            style.log_errorbar(ax, [p["x"] for p in drawn], [p["y"] for p in drawn],
-                               [p["y_half"] for p in drawn], dodge=False, fmt="-", color=color,
-                               xerr=[p["x_half"] for p in drawn], lw=1.0, elinewidth=0.8)
+            bars = style.log_errorbar(ax, [p["x"] for p in drawn], [p["y"] for p in drawn],
+                                      [p["y_half"] for p in drawn], dodge=False, fmt="-", color=color,
+                                      xerr=[p["x_half"] for p in drawn], lw=1.0, elinewidth=0.8)
+            bars.lines[2][0].set_alpha(0.4)
             for p in drawn:
                 ax.plot(p["x"], p["y"], ls="none", marker=marker, color=color, mec="k", mew=0.6,
                         ms=marker_size(p["vibration"], *vib_range), zorder=3)
             ax.plot([], [], marker=marker, color=color, mec="k", mew=0.6, label=name)
             style.mark_partial(ax, [(p["x"], p["y"], p["y_half"], p["n"], p["runs"]) for p in drawn], color)
             if len(pts) > 1:
-                labelled.append((drawn, color))
+                labelled.append((drawn, color, [step_text(p["dt"]) for p in drawn]))
+            elif per_integrator[pts[0]["integrator"]] > 1:
+                labelled.append((drawn, color, [setting.partition(", ")[2] or setting]))
         # At the cost its runs reached, not dodged: no two settings share a cost by construction.
         style.mark_failed(ax, [(p["x"], ("" if one_step else f"{step_text(p['dt'])}: ")
                                 + (f"diverged ({p['failed']} of {p['runs']})" if p["failed"]
@@ -174,9 +182,9 @@ def accuracy_cost(out_dir, rows, parameters):
     with warnings.catch_warnings():  # labels are placed on the final layout (place_labels)
         warnings.simplefilter("ignore")
         fig.tight_layout()
-    for ax, drawn, color in labelled:
-        style.place_labels(ax, [(p["x"], p["y"]) for p in drawn], [step_text(p["dt"]) for p in drawn],
-                           color, half=[p["y_half"] for p in drawn], joined=True)
+    for ax, drawn, color, texts in labelled:
+        style.place_labels(ax, [(p["x"], p["y"]) for p in drawn], texts, color,
+                           half=[p["y_half"] for p in drawn], joined=len(drawn) > 1)
     return style.save(fig, out_dir, "accuracy_cost")
 
 
