@@ -135,6 +135,15 @@ class AccuracyCostTest(unittest.TestCase):
         self.assertEqual(integrator_order(program, rows), ["leapfrog", "xpbd", "vbd", "bdf2"])
         self.assertEqual(integrator_order(Path(self._tmp.name) / "missing", rows), ["bdf2", "leapfrog", "vbd"])
 
+    def test_steps_and_the_settings_of_one_integrator_are_labelled(self):
+        rows = ROWS + [run("implicit-euler", 1 / 30, s, wall=0.5, sim=1.2, error=1e-2, vibration=1e-4)
+                       | {"integrator.linear_tolerance": 0.1, "id": f"tol-{s}"} for s in (1, 2, 3)]
+        kept = []
+        with mock.patch.object(style.plt, "close", kept.append):
+            plots.accuracy_cost(Path(self._tmp.name), rows, PARAMETERS + ["integrator.linear_tolerance"])
+        labels = {t.get_text() for t in kept[0].axes[0].texts}
+        self.assertTrue({"0.0001 s", "linear_tolerance=0.1"} <= labels, labels)
+
     def test_marker_size_grows_with_the_vibration(self):
         low, high = plots_accuracy_cost.SIZE_RANGE
         self.assertAlmostEqual(plots_accuracy_cost.marker_size(1e-4, 1e-4, 1e-3), low)
