@@ -28,11 +28,12 @@ except ImportError:  # drapelab report checks for matplotlib and numpy only
     sys.exit("report.py needs pandas (Debian: apt install python3-pandas; install_dependencies.sh installs it)")
 
 from drapeanalysis import (metrics, plots, report_options, results_file, runfiles,  # noqa: E402
-                           table_columns, viewer_pages)
+                           style, table_columns, viewer_pages)
+from drapeanalysis.integrator_order import integrator_order  # noqa: E402
 from drapeanalysis.report_summary import (SUMMARY_NOTE, attach_note, method_name, summary_tables,  # noqa: E402
                                           unfinished_banner)
 from drapeanalysis.fileio import OutputError, atomic_output, check_writable_folder, output_folder  # noqa: E402
-from drapeanalysis.figure_catalogue import CAPTIONS, FIGURE_METRIC  # noqa: E402
+from drapeanalysis.figure_catalogue import CAPTIONS, figure_metrics  # noqa: E402
 
 # The provenance fields of the results table (docs/outputs.md, Provenance) and their titles.
 PROVENANCE = (("version", "drapelab version"), ("git_commit", "git commit"), ("build_type", "build type"),
@@ -203,8 +204,9 @@ def make_figures(directory, out_dir, rows, parameters, shown=()):
             out_dir, rows, parameters, "contact_switch_rate_final",
             "contact switches [1/(particle s)]", "contact_switch_vs_dt")),
         ("stable_dt", lambda: plots.stable_dt(out_dir, rows, parameters)),
+        ("accuracy_cost", lambda: plots.accuracy_cost(out_dir, rows, parameters)),
     ]
-    figures = [(name, make()) for name, make in makers if wanted(FIGURE_METRIC[name])]
+    figures = [(name, make()) for name, make in makers if all(map(wanted, figure_metrics(name)))]
     out = [(stem, CAPTIONS[name]) for name, stem in figures if stem]
     if not wanted("snapshots"):
         return out
@@ -288,6 +290,7 @@ def write_report(args, results, rows, windows, animated):
     out_dir = args.directory / "report"
     write_metrics(args.directory, results, rows, windows)
     output_folder(out_dir)
+    style.declare_integrators(integrator_order(args.drapelab, rows))
     figures = make_figures(args.directory, out_dir, rows, results["parameters"], results.get("metrics") or ())
     videos = animate(args.directory, out_dir, animated, args.frames) if animated else []
     pages = (viewer_pages.write_pages(args.directory, out_dir, rows, args.drapelab)

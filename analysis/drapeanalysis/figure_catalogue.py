@@ -40,6 +40,15 @@ CAPTIONS = {
                             "particle and second, last 0.5 s, against the step size (a linear axis "
                             "when a value is 0).",
     "stable_dt": "Largest stable step found by bisection.",
+    "accuracy_cost": "Accuracy against cost: the restart error after the hold (the reference restarted "
+                     "from the run's state at its hold, RMS distance a horizon later: the first "
+                     "horizon, and the largest in the second panel) against wall seconds per "
+                     "simulated second (the run's wall time over its simulated time; real time = 1, "
+                     "dash-dotted; the reference's cost dashed), one point per method and setting: "
+                     "the mean over its runs, bars the 95 % Student-t interval of both; the "
+                     "marker's size the vibration after the hold; a setting's steps joined and "
+                     "labelled; an x on the floor, \"diverged (k of N)\": a setting none of whose "
+                     "runs has an error, at the cost its runs reached.",
 }
 
 
@@ -47,21 +56,30 @@ CAPTIONS = {
 # and of those among them whose series share x values (steps, horizons) and are dodged.
 _ARROW = " An arrow at a bar's foot: its 95 % interval reaches 0, which a log axis cannot show"
 CAPTIONS["work_precision"] += _ARROW + "."
+CAPTIONS["accuracy_cost"] += _ARROW + "."
 for _name in ("restart_error_vs_horizon", "attach_error_vs_iterations", "attach_error_vs_time",
               "vibration_vs_dt", "contact_switch_vs_dt"):
     CAPTIONS[_name] += _ARROW + "; series at the same x are drawn slightly apart."
 
 
-# The experiment's `metrics` (docs/experiments.md) each figure belongs to.
+# The experiment's `metrics` (docs/experiments.md) each figure belongs to (several: it needs all).
 FIGURE_METRIC = {
     "energy_vs_time": "energy_drift", "energy_by_scene": "energy_drift",
     "work_precision": "work_precision", "attach_error_vs_iterations": "attach_error",
     "attach_error_vs_time": "attach_error", "vibration_vs_dt": "vibration",
     "vibration_events_vs_dt": "vibration", "contact_switch_vs_dt": "vibration",
     "stable_dt": "stable_dt", "restart_error_vs_horizon": "restart_error",
+    "accuracy_cost": ("restart_error", "vibration"),
 }
+
+
+def figure_metrics(name):
+    """The metrics the figure `name` needs, all of which the experiment must ask for."""
+    value = FIGURE_METRIC[name]
+    return (value,) if isinstance(value, str) else value
+
 
 # Every name an experiment's `metrics` may hold: drapelab's known_metrics()
 # (experiments/sweep/experiment.cpp), which refuses any other; mapping_error has a column and no
 # figure, snapshots figures of their own.
-KNOWN_METRICS = frozenset(FIGURE_METRIC.values()) | {"mapping_error", "snapshots"}
+KNOWN_METRICS = frozenset(m for name in FIGURE_METRIC for m in figure_metrics(name)) | {"mapping_error", "snapshots"}

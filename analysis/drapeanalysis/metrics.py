@@ -322,8 +322,10 @@ def restart_error(run, summary):
     horizon: `restart_error_start` (from the common start), `restart_error_events` (mean over
     the branches after the reference's events), `restart_error_after_<kind>` (over the events of
     one kind), `restart_error_events_rel` (mean of error / the reference's own motion over the
-    horizon), `restart_motion_events` (the mean of that motion); for every later horizon `restart_error_events_<ms>ms`; `restart_error_failed`, the
-    branches that diverged or failed (left out of the means). Empty without the file."""
+    horizon), `restart_motion_events` (the mean of that motion); for every later horizon
+    `restart_error_events_<ms>ms` and, for the kinds that happened, `restart_error_after_<kind>_<ms>ms`;
+    `restart_error_failed`, the branches that diverged or failed (left out of the means). Empty
+    without the file."""
     path = run / "restart_error.csv"
     if not path.exists():
         return {}
@@ -336,6 +338,11 @@ def restart_error(run, summary):
         mean = float(events["error_rms"].mean()) if len(events) else math.nan
         if k > 0:
             out[f"restart_error_events_{1e3 * horizon:.0f}ms"] = mean
+            # Per kind too: the accuracy-cost figure's later panel is the error after the hold.
+            for kind in EVENT_KINDS:
+                of_kind = events[events["events"] == kind]["error_rms"]
+                if len(of_kind):
+                    out[f"restart_error_after_{kind}_{1e3 * horizon:.0f}ms"] = float(of_kind.mean())
             continue
         start = at[at["events"] == "start"]["error_rms"]
         out["restart_error_start"] = float(start.iloc[0]) if len(start) else math.nan

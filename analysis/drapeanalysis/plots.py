@@ -1,7 +1,7 @@
 """The report's figures in the style of style.py; each function saves PNG, SVG and PDF and
 returns the file stem, or None when the table has nothing to plot. report.py calls them as
 plots.<name>: the energy, error and step-size figures live in plots_energy.py, plots_error.py
-and plots_vibration.py, the data they plot in figure_data.py; this module names them all and
+and plots_vibration.py, accuracy against cost in plots_accuracy_cost.py, the data they plot in figure_data.py; this module names them all and
 draws the simple ones (a metric against a swept value, the stable steps, the snapshots)."""
 import math
 
@@ -10,12 +10,13 @@ import matplotlib.pyplot as plt
 from . import snapshots as snapshot_views, style
 from .figure_data import (INTEGRATOR_DETAIL, REPEAT_PARAMETER, label, method_label, number,
                           plotted_unit, scene_name, series, step, with_intervals)
+from .plots_accuracy_cost import accuracy_cost
 from .plots_energy import energy_by_scene, energy_vs_time
 from .plots_error import restart_error_vs_horizon, work_precision
 from .plots_vibration import vibration_vs_dt
 
 # What report.py, viewer_pages.py and the tests call as plots.<name>, wherever it lives.
-__all__ = ["INTEGRATOR_DETAIL", "REPEAT_PARAMETER", "energy_by_scene", "energy_vs_time", "label",
+__all__ = ["INTEGRATOR_DETAIL", "accuracy_cost", "REPEAT_PARAMETER", "energy_by_scene", "energy_vs_time", "label",
            "line_plot", "method_label", "number", "restart_error_vs_horizon", "scene_name",
            "snapshots", "stable_dt", "step", "vibration_vs_dt", "with_intervals", "work_precision"]
 

@@ -54,7 +54,7 @@ def vibration_vs_dt(out_dir, rows, parameters, y_key="vibration_rms_final",
         name = ", ".join([str(row.get("integrator", "?"))] + rest)
         groups.setdefault(name, []).append((x, y))
         statuses.setdefault((panel, name), []).append(row.get("status"))
-        colors[name] = (integrator_color(row), style.INTEGRATOR_MARKERS.get(row.get("integrator"), "o"))
+        colors[name] = (integrator_color(row), style.integrator_marker(row))
     failures = {(panel, name): failed_steps(points, statuses[panel, name])
                 for panel, groups in panels.items() for name, points in groups.items()}
     # A method's points are the means of its finite values; its steps with none are failures.

@@ -72,9 +72,46 @@ def log_x_ticks_at(ax, values):
     ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
 
 
+# Integrators beyond the six above (xpbd, vbd, ...) take the next colours of tab10, then tab20's
+# lighter halves, and markers none of the six uses, in the order they are declared:
+# declare_integrators with `drapelab integrators --json`'s registry order (report.py), else in
+# the order a figure first asks for them. A name keeps its colour for the whole report.
+EXTRA_COLORS = tuple(f"tab:{c}" for c in ("pink", "gray", "olive", "cyan")) + tuple(
+    matplotlib.colormaps["tab20"].colors[1::2])
+EXTRA_MARKERS = ("X", "*", "h", "p", "<", ">", "d", "8")
+KNOWN_INTEGRATORS = len(INTEGRATOR_COLORS)
+
+
+def declare_integrators(names):
+    """Gives each name of `names` not yet known the next free colour and marker, in order."""
+    for name in names:
+        if name not in INTEGRATOR_COLORS:
+            k = len(INTEGRATOR_COLORS) - KNOWN_INTEGRATORS
+            INTEGRATOR_COLORS[name] = EXTRA_COLORS[k % len(EXTRA_COLORS)]
+            INTEGRATOR_MARKERS[name] = EXTRA_MARKERS[k % len(EXTRA_MARKERS)]
+
+
+def _integrator_name(row):
+    return row.get("integrator.name") or row.get("integrator")
+
+
 def integrator_color(row, default=None):
-    """The colour of a run's integrator (default for unknown names)."""
-    return INTEGRATOR_COLORS.get(row.get("integrator.name") or row.get("integrator"), default)
+    """The colour of a run's integrator: its own, declared on first use when new (default when
+    the row names none)."""
+    name = _integrator_name(row)
+    if not name:
+        return default
+    declare_integrators([name])
+    return INTEGRATOR_COLORS[name]
+
+
+def integrator_marker(row):
+    """The marker of a run's integrator (declared on first use, as integrator_color)."""
+    name = _integrator_name(row)
+    if not name:
+        return "o"
+    declare_integrators([name])
+    return INTEGRATOR_MARKERS[name]
 
 
 def variant_style(k):

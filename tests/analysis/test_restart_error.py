@@ -32,6 +32,9 @@ class RestartErrorTest(RunFolderTest):
         self.assertAlmostEqual(out["restart_error_events_rel"], (0.004 / 0.02 + 0.002 / 0.04) / 2)
         self.assertAlmostEqual(out["restart_motion_events"], (0.02 + 0.04) / 2)
         self.assertAlmostEqual(out["restart_error_events_100ms"], (0.01 + 0.006) / 2)
+        self.assertAlmostEqual(out["restart_error_after_hold_100ms"], 0.01)
+        self.assertAlmostEqual(out["restart_error_after_release_100ms"], 0.006)
+        self.assertNotIn("restart_error_after_attach_100ms", out)
         self.assertEqual(out["restart_error_failed"], 2)
 
     def test_no_file_no_columns_and_a_bad_cell_is_named(self):
