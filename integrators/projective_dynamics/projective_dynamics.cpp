@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "integrators/acceleration/chebyshev.hpp"
+
 namespace drape {
 
 namespace {
@@ -82,9 +84,7 @@ double ProjectiveDynamics::step(double t_stop) {
     particle(v, i) = constraints.trajectory(i)->velocity(t_next);
   }
   m_trace.clear();
-  // Wang (2015), equation 12 with gamma = 1: omega_1 = 1, omega_2 = 2 / (2 - rho^2),
-  // omega_{k+1} = 4 / (4 - rho^2 omega_k).
-  double omega = 1.0;
+  double omega = 1.0;  // Chebyshev's weight of loop index k is Wang's omega_{k+1}
   const std::vector<int>& slots = m_matrix.slots();
   const auto free_count = static_cast<std::ptrdiff_t>(slots.size());
   for (int k = 0; k < m_iterations; ++k) {
@@ -111,8 +111,7 @@ double ProjectiveDynamics::step(double t_stop) {
       ++m_counters.jacobian_setups;
     }
     m_matrix.solve_in_place(m_z.data());
-    if (m_chebyshev && k > 0)
-      omega = k == 1 ? 2.0 / (2.0 - m_rho * m_rho) : 4.0 / (4.0 - m_rho * m_rho * omega);
+    if (m_chebyshev) omega = chebyshev_omega(k + 1, m_rho, omega);
     double size = 0.0;
     for (std::ptrdiff_t s = 0; s < free_count; ++s) {
       const int i = slots[static_cast<std::size_t>(s)];

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "integrators/acceleration/chebyshev.hpp"
+
 namespace drape {
 
 namespace {
@@ -71,8 +73,7 @@ void Vbd::start_positions(double h, double t_next, VecRef x) {
 }
 
 void Vbd::accelerate(int k, double& omega, VecRef x) {
-  const double rho2 = m_rho * m_rho;
-  omega = k == 1 ? 1.0 : k == 2 ? 2.0 / (2.0 - rho2) : 4.0 / (4.0 - rho2 * omega);
+  omega = chebyshev_omega(k, m_rho, omega);
   const auto& fixed = m_system.constraints().mask();
   if (k >= 2)
     for (int i = 0; i < m_system.num_particles(); ++i)

@@ -6,6 +6,7 @@
 
 #include "integrators/implicit_euler/implicit_euler.hpp"
 #include "integrators/projective_dynamics/projective_dynamics.hpp"
+#include "tests/support/backward_euler_reference.hpp"
 #include "tests/support/swinging_sheet.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -20,21 +21,6 @@ IntegratorOptions pd_options(long iterations, bool chebyshev = false, double rho
   o.dt = frame;
   o.settings = {{"iterations", iterations}, {"chebyshev", chebyshev}, {"rho", rho}};
   return o;
-}
-
-// One step of converged backward Euler from y, to tolerances far below the 1e-6 m compared.
-Eigen::VectorXd backward_euler_step(ClothSystem& s, const Eigen::VectorXd& y) {
-  IntegratorOptions o;
-  o.name = "implicit-euler";
-  o.dt = frame;
-  o.solve = "converged";
-  o.linear_solver = "sparse-direct";
-  o.rtol = 1e-10;
-  o.atol = 1e-12;
-  ImplicitEuler euler(s, o);
-  euler.reset(0.0, y);
-  euler.step(frame);
-  return euler.state();
 }
 
 Eigen::VectorXd pd_step(ClothSystem& s, const Eigen::VectorXd& y, long iterations) {
@@ -55,7 +41,7 @@ double distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 
 // The distance to backward Euler falls with the iterations and ends below 1e-6 m.
 void expect_converges_to_backward_euler(ClothSystem& s, const Eigen::VectorXd& y) {
-  const Eigen::VectorXd reference = backward_euler_step(s, y);
+  const Eigen::VectorXd reference = testing::backward_euler_step(s, y, frame, 1e-10, 1e-12);
   double last = distance(y, reference);
   ASSERT_GT(last, 1e-3) << "the step must move the cloth";
   for (const long iterations : {10, 100, 1000, 30000}) {
@@ -72,7 +58,7 @@ TEST(ProjectiveDynamics, ConvergesToBackwardEulerOnTheSwingingSheet) {
   Eigen::VectorXd y = s->initial_state(0.0);
   expect_converges_to_backward_euler(*s, y);
   // And from a swinging state, a few backward Euler steps later.
-  for (int k = 0; k < 5; ++k) y = backward_euler_step(*s, y);
+  for (int k = 0; k < 5; ++k) y = testing::backward_euler_step(*s, y, frame, 1e-10, 1e-12);
   expect_converges_to_backward_euler(*s, y);
 }
 
@@ -98,7 +84,7 @@ TEST(ProjectiveDynamics, ChebyshevReachesBackwardEulerInAThirtiethOfTheIteration
   auto sphere = testing::cloth_against_sphere(CollisionModel::smooth);
   for (ClothSystem* s : {sheet.get(), sphere.get()}) {
     const Eigen::VectorXd y = s->initial_state(0.0);
-    const Eigen::VectorXd reference = backward_euler_step(*s, y);
+    const Eigen::VectorXd reference = testing::backward_euler_step(*s, y, frame, 1e-10, 1e-12);
     EXPECT_GT(distance(pd_step(*s, y, 1000), reference), 1e-4);
     ProjectiveDynamics pd(*s, pd_options(1000, true, 0.999));
     pd.reset(0.0, y);

@@ -5,6 +5,7 @@
 #include "integrators/implicit_euler/implicit_euler.hpp"
 #include "integrators/interface/registry.hpp"
 #include "integrators/vbd/vbd.hpp"
+#include "tests/support/backward_euler_reference.hpp"
 #include "tests/support/swinging_sheet.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -22,22 +23,6 @@ IntegratorOptions vbd_options(double dt, int iterations, const std::string& init
   return o;
 }
 
-// Converged backward Euler to far below the distances measured.
-Eigen::VectorXd backward_euler_step(ClothSystem& s, const Eigen::VectorXd& y0) {
-  IntegratorOptions o;
-  o.name = "implicit-euler";
-  o.dt = frame;
-  o.solve = "converged";
-  o.linear_solver = "sparse-direct";
-  o.rtol = 1e-12;
-  o.atol = 1e-14;
-  o.max_newton_iters = 200;
-  ImplicitEuler method(s, o);
-  method.reset(0.0, y0);
-  method.step(frame);
-  return method.state();
-}
-
 // Largest position distance of one VBD step of `iterations` sweeps from y0 to `reference`.
 double distance_after(ClothSystem& s, const Eigen::VectorXd& y0, const Eigen::VectorXd& reference,
                       int iterations, bool chebyshev) {
@@ -52,7 +37,7 @@ double distance_after(ClothSystem& s, const Eigen::VectorXd& y0, const Eigen::Ve
 // the last count (or to the round-off floor, 1e-12 m, earlier).
 void expect_converges_to_backward_euler(ClothSystem& s, const Eigen::VectorXd& y0,
                                         std::vector<int> plain, std::vector<int> chebyshev) {
-  const Eigen::VectorXd reference = backward_euler_step(s, y0);
+  const Eigen::VectorXd reference = testing::backward_euler_step(s, y0, frame);
   for (const bool accelerated : {false, true}) {
     double previous = distance_after(s, y0, reference, 1, accelerated);
     for (const int iterations : accelerated ? chebyshev : plain) {
@@ -71,7 +56,7 @@ TEST(Vbd, SwingingSheetStepConvergesToConvergedBackwardEuler) {
   auto sheet = testing::swinging_sheet(1.0);
   // A moving start: three backward-Euler steps from rest.
   Eigen::VectorXd y = sheet->initial_state(0.0);
-  for (int k = 0; k < 3; ++k) y = backward_euler_step(*sheet, y);
+  for (int k = 0; k < 3; ++k) y = testing::backward_euler_step(*sheet, y, frame);
   expect_converges_to_backward_euler(*sheet, y, {10, 100, 1000, 6000}, {10, 100, 1000, 4000});
 }
 

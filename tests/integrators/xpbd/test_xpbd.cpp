@@ -7,6 +7,7 @@
 #include "integrators/implicit_euler/implicit_euler.hpp"
 #include "integrators/interface/registry.hpp"
 #include "integrators/xpbd/xpbd.hpp"
+#include "tests/support/backward_euler_reference.hpp"
 #include "tests/support/swinging_sheet.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -30,21 +31,6 @@ Eigen::VectorXd run(ClothSystem& s, const IntegratorOptions& o, const Eigen::Vec
   return testing::run_until(*method, t_end);
 }
 
-// One step of backward Euler solved to round-off (implicit-euler, solve = converged).
-Eigen::VectorXd backward_euler_step(ClothSystem& s, const Eigen::VectorXd& y0, double dt) {
-  IntegratorOptions o;
-  o.name = "implicit-euler";
-  o.dt = dt;
-  o.solve = "converged";
-  o.linear_solver = "sparse-direct";
-  o.rtol = 1e-12;
-  o.atol = 1e-14;
-  ImplicitEuler method(s, o);
-  method.reset(0.0, y0);
-  method.step(dt);
-  return method.state();
-}
-
 double position_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return (a - b).head(a.size() / 2).lpNorm<Eigen::Infinity>();
 }
@@ -57,7 +43,7 @@ TEST(Xpbd, ConvergedStepIsBackwardEulerWhereGradientsKeepTheirDirection) {
   s->constraints().fix_at(0, s->cloth().rest_positions.segment<3>(0));
   Eigen::VectorXd y0 = s->initial_state(0.0);
   for (int i = 1; i < 6; ++i) y0[3 * i + 1] -= 0.001 * i * i;  // along y only
-  const Eigen::VectorXd expected = backward_euler_step(*s, y0, 1.0 / 30.0);
+  const Eigen::VectorXd expected = testing::backward_euler_step(*s, y0, 1.0 / 30.0);
   EXPECT_GT(position_distance(expected, y0), 0.01);  // a large step: the chain falls and rings
   for (const char* sweep : {"gauss-seidel", "jacobi"}) {
     const Eigen::VectorXd y = run(*s, xpbd_options(1.0 / 30.0, 1, 2000, sweep), y0, 1.0 / 30.0);
@@ -76,7 +62,7 @@ TEST(Xpbd, ConvergedStepIsBackwardEulerUpToTheDroppedResidual) {
     std::vector<double> distance;
     for (const double dt : {1e-2, 1e-3}) {
       const Eigen::VectorXd y = run(*s, xpbd_options(dt, 1, 1000, sweep), y0, dt);
-      distance.push_back(position_distance(y, backward_euler_step(*s, y0, dt)));
+      distance.push_back(position_distance(y, testing::backward_euler_step(*s, y0, dt)));
     }
     // Measured: 2.9e-5 and 2.0e-7 m (Gauss-Seidel), 2.2e-5 and 2.1e-7 m (Jacobi).
     EXPECT_LT(distance[1], 1e-6) << sweep;
