@@ -46,7 +46,8 @@ class Integrator {
   Integrator(const Integrator&) = delete;
   Integrator& operator=(const Integrator&) = delete;
 
-  /// (Re)starts at time t from state y, discarding any history (docs/model.md section 5: reset at events).
+  /// (Re)starts at time t from state y, discarding any history (docs/model.md section 5: reset at
+  /// events).
   virtual void reset(double t, const Eigen::VectorXd& y);
   /// Takes one step that does not pass t_stop, projects, and returns the new time.
   virtual double step(double t_stop) = 0;

@@ -2,7 +2,7 @@
 // What an integrator is, said once: its name, family, order, the keys it reads beyond `name` and
 // `dt` (with defaults and ranges), and its factory. The options reader, `drapelab integrators`,
 // the registry and the analysis' styles ask this declaration instead of matching names
-// (docs/integrators.md, "Adding an integrator").
+// (docs/integrators/README.md, "Adding an integrator").
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>

@@ -186,9 +186,9 @@ std::string linear_solver_of(const IntegratorOptions& options) {
 
 std::string nonlinear_solver_of(const IntegratorOptions& options) {
   if (!named_keys_of(options.name).newton_stages) return "";
-  // The line search is the default of the two Newton integrators (issue 13; docs/integrators.md,
-  // "Default"): ARKODE's Newton rejects the first, growing iterations of a large step and has it
-  // halved. `newton` stays selectable.
+  // The line search is the default of the two Newton integrators
+  // (docs/integrators/line-search-newton.md, "Default"): ARKODE's Newton rejects the first, growing
+  // iterations of a large step and has it halved. `newton` stays selectable.
   return options.nonlinear_solver.empty() ? "line-search" : options.nonlinear_solver;
 }
 
@@ -200,7 +200,7 @@ bool uses_line_search(const IntegratorOptions& options) {
 int max_newton_iters_of(const IntegratorOptions& options) {
   if (options.max_newton_iters > 0) return options.max_newton_iters;
   // 400, not 100: on the drape scene at 1/30 s every step that halved at 100 iterations
-  // converged within 400 (docs/integrators.md, "The iteration bound").
+  // converged within 400 (docs/journal/2026-11-26-iteration-bound.md).
   return uses_line_search(options) ? 400 : 10;
 }
 

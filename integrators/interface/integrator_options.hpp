@@ -17,13 +17,14 @@ struct IntegratorOptions {
   double rtol = 1e-4;             ///< relative tolerance of adaptive runs
   double atol = 1e-7;             ///< absolute tolerance of adaptive runs
   double max_dt = 0.0;            ///< largest adaptive step, 0 = unbounded
-  /// Implicit solves (docs/integrators.md), implicit integrators only; "" = the default of
-  /// linear_solver_of().
+  /// Implicit solves (docs/integrators/linear-solvers.md), implicit integrators only; "" = the
+  /// default of linear_solver_of().
   std::string linear_solver;
   /// Newton iterations per stage before a failure; 0 = max_newton_iters_of()'s default.
   int max_newton_iters = 0;
   /// arkode-dirk and arkode-imex: how stages are solved, `line-search` (Newton on the incremental
-  /// potential with a line search, docs/integrators.md) or `newton` (ARKODE's); "" = line-search.
+  /// potential with a line search, docs/integrators/line-search-newton.md) or `newton` (ARKODE's);
+  /// "" = line-search.
   std::string nonlinear_solver;
   /// arkode-imex: which forces the implicit part f_I holds, `springs` (elastic and spring
   /// damping; the collision force explicit) or `springs+collision` (the contact implicit too);
@@ -54,12 +55,13 @@ struct IntegratorOptions {
   std::string setting_choice(const std::string& key) const;
 };
 
-/// The linear solver an implicit integrator uses: `linear_solver`, or when empty pcg-multigrid
-/// for implicit-euler and bdf2 and pcg-reduced inside ARKODE (measured, docs/integrators.md).
+/// The linear solver an implicit integrator uses: `linear_solver`, or when empty pcg-multigrid for
+/// implicit-euler and bdf2 and pcg-reduced inside ARKODE (measured,
+/// docs/integrators/linear-solvers.md).
 std::string linear_solver_of(const IntegratorOptions& options);
 /// CG's relative residual when `linear_tolerance` is 0: 1e-3 for implicit-euler and bdf2 (below
-/// their truncation error at any step worth taking implicitly, docs/integrators.md and
-/// docs/integrators/bdf2.md, "Linear tolerance"), 1e-8 inside ARKODE's preconditioner.
+/// their truncation error at any step worth taking implicitly, docs/integrators/implicit-euler.md
+/// and docs/integrators/bdf2.md, "Linear tolerance"), 1e-8 inside ARKODE's preconditioner.
 double default_linear_tolerance(const std::string& name);
 /// `linear_tolerance`, or the integrator's default when it is 0.
 double linear_tolerance_of(const IntegratorOptions& options);
@@ -73,7 +75,7 @@ bool uses_line_search(const IntegratorOptions& options);
 /// `exact_solve`, or `lu` when it is empty.
 std::string exact_solve_of(const IntegratorOptions& options);
 /// `max_newton_iters`, or when 0: 10 for ARKODE's Newton, 400 for the line-search Newton
-/// (docs/integrators.md, "The iteration bound").
+/// (docs/journal/2026-11-26-iteration-bound.md).
 int max_newton_iters_of(const IntegratorOptions& options);
 
 /// Reads and validates an `integrator` object; errors name `file` and `path.key`.

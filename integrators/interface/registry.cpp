@@ -65,7 +65,7 @@ std::unique_ptr<Integrator> make_arkode_stepper(ClothSystem& system,
   return std::make_unique<ArkodeStepper>(system, *arkode_kind(options.name), options);
 }
 
-// The integrators whose keys are IntegratorOptions' named fields (docs/integrators.md); the
+// The integrators whose keys are IntegratorOptions' named fields (docs/integrators/README.md); the
 // later ones declare their own keys in their folders.
 std::vector<IntegratorDeclaration> built_in_declarations() {
   std::vector<IntegratorDeclaration> all = {
@@ -83,10 +83,11 @@ std::vector<IntegratorDeclaration> built_in_declarations() {
        [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
          return std::make_unique<ImplicitEuler>(system, options);
        },
-       // pcg-multigrid, measured on the draped-cloth benchmark (docs/integrators.md): the
-       // multigrid cycle pays for itself at implicit-euler's large steps (90 -> 9 CG iterations
-       // at 1/30 s); ARKODE's adaptive steps there are microseconds, S is then close to M, and
-       // block Jacobi is cheaper. 1e-3: integrator_options.hpp, default_linear_tolerance.
+       // pcg-multigrid, measured on the draped-cloth benchmark
+       // (docs/integrators/linear-solvers.md): the multigrid cycle pays for itself at
+       // implicit-euler's large steps (90 -> 9 CG iterations at 1/30 s); ARKODE's adaptive steps
+       // there are microseconds, S is then close to M, and block Jacobi is cheaper. 1e-3:
+       // integrator_options.hpp, default_linear_tolerance.
        {false, false, true, true, false, "pcg-multigrid", 1e-3}},
   };
   for (const ArkodeIntegrator& a : arkode_integrators)
@@ -143,9 +144,11 @@ void validate_integrator_choice(const IntegratorOptions& options, const std::str
                        "'" + options.table + "' has no embedded method: adaptive steps need one");
   }
   const IntegratorDeclaration* info = find_integrator(options.name);
-  if (info && info->family != "implicit" && info->family != "imex" && !options.linear_solver.empty())
+  if (info && info->family != "implicit" && info->family != "imex" &&
+      !options.linear_solver.empty())
     throw InputError(file, path + ".linear_solver",
-                     "integrator '" + options.name + "' is explicit: it solves no linear systems");
+                     "integrator '" + options.name + "' is " + info->family +
+                         ": it takes no linear_solver");
   if (!reduced_solve_named(linear_solver_of(options)))
     throw InputError(file, path + ".linear_solver",
                      "unknown linear solver '" + options.linear_solver +
