@@ -171,7 +171,7 @@ def accuracy_cost(out_dir, rows, parameters):
             ax.margins(0.12)  # the largest markers clear of the frame
             ax.set_xscale("log")
             ax.set_yscale("log")
-            ax.set_xlabel("wall seconds per simulated second (64 x 64: real time = 1)")
+            ax.set_xlabel("wall seconds per simulated second (real time = 1)")
             ax.grid(True, which="both", alpha=0.3)
         axes[r, 0].set_ylabel("restart error after the hold [mm]")
     _include_real_time(axes)
