@@ -90,14 +90,18 @@ void Manipulator::copy_state_from(const Manipulator& other) {
   m_hands = other.m_hands;
   m_attaching = other.m_attaching;
   m_next_key = other.m_next_key;
+  m_previous_update = other.m_previous_update;
   m_events = other.m_events;
 }
 
 double Manipulator::next_key_time(double t) const {
-  if (!m_track) return std::numeric_limits<double>::infinity();
+  double next = std::numeric_limits<double>::infinity();
+  for (const PendingAttach& a : m_attaching)
+    if (a.due > t + key_time_eps) next = std::min(next, a.due);
+  if (!m_track) return next;
   for (std::size_t k = m_next_key; k < m_track->keys().size(); ++k)
-    if (m_track->keys()[k].t > t + key_time_eps) return m_track->keys()[k].t;
-  return std::numeric_limits<double>::infinity();
+    if (m_track->keys()[k].t > t + key_time_eps) return std::min(next, m_track->keys()[k].t);
+  return next;
 }
 
 void Manipulator::ignore_keys_after(double t) {
@@ -131,6 +135,27 @@ int Manipulator::nearest_free_particle(const Vec3& p, const Eigen::VectorXd& y,
   return best;
 }
 
+int Manipulator::first_reached_particle(Hand hand, double t, const Eigen::VectorXd& y) const {
+  // A hold takes the particle the hand reached first, located inside the step to within
+  // hold_search_interval (docs/model.md section 7, "Hold"), so that the particle does not depend
+  // on the step: at 1/30 s the hand found at the step's end is up to 33 ms further on, nearer
+  // another particle. Steps no longer than the interval test only their end.
+  constexpr double hold_search_interval = 1e-3;
+  const double t0 = m_previous_update;
+  const int samples = std::isfinite(t0) && t > t0
+                          ? std::max(1, static_cast<int>(std::ceil((t - t0) / hold_search_interval - 1e-9)))
+                          : 1;
+  for (int k = 1; k <= samples; ++k) {
+    const double tk = k == samples ? t : t0 + (t - t0) * k / samples;
+    const auto motion = m_track->motion(hand, tk);
+    if (!motion || !motion->available) continue;
+    double distance = 0.0;
+    const int candidate = nearest_free_particle(motion->position, y, distance);
+    if (candidate >= 0 && distance < m_params.hold_threshold) return candidate;
+  }
+  return -1;
+}
+
 std::optional<Eigen::VectorXd> Manipulator::update(double t, const Eigen::VectorXd& y) {
   detail::StateEdit state(y);
   bool changed = false;
@@ -151,6 +176,7 @@ std::optional<Eigen::VectorXd> Manipulator::update(double t, const Eigen::Vector
     }
     update_holds(t, state, changed);
   }
+  m_previous_update = t;
   if (!changed) return std::nullopt;
   Eigen::VectorXd& out = state.edit();
   const Eigen::Index n3 = 3 * m_system.num_particles();
@@ -231,20 +257,27 @@ void Manipulator::attach(double t, const std::string& key, detail::StateEdit& st
     y.segment<3>(n3 + 3 * i).setZero();
     add_event(t, "attach", key, &h, i, o);
     let_go(h, t);
-    m_attaching.push_back({i, o, m_params.attach_iterations});
+    if (m_params.attach_time > 0.0)
+      m_attaching.push_back({i, o, std::numeric_limits<int>::max(), t + m_params.attach_time});
+    else
+      m_attaching.push_back(
+          {i, o, m_params.attach_iterations, std::numeric_limits<double>::infinity()});
     any = true;
   }
   if (!any) return ignore(t, key, "attach needs a held particle and nothing is held");
   changed = true;
-  if (m_params.attach_iterations == 0) finish_attaches(t, state.current(), changed);
+  if (m_params.attach_iterations == 0 && !(m_params.attach_time > 0.0))
+    finish_attaches(t, state.current(), changed);
 }
 
 void Manipulator::finish_attaches(double t, const Eigen::VectorXd& y, bool& changed) {
   const Dummy* dummy = m_system.dummy();
   const double delta = m_system.params().collision.threshold;
   for (auto it = m_attaching.begin(); it != m_attaching.end();) {
-    // Called once after every step: after attach_iterations steps the particle is fixed.
-    if (--it->steps_left > 0) {
+    // Called once after every step: after attach_iterations steps, or at the time attach_time
+    // after the attach (the loop stops there, next_key_time), the particle is fixed.
+    const bool due = std::isfinite(it->due) ? t >= it->due - key_time_eps : --it->steps_left <= 0;
+    if (!due) {
       ++it;
       continue;
     }
@@ -332,11 +365,12 @@ void Manipulator::update_holds(double t, detail::StateEdit& state, bool& changed
       continue;
     }
     if (distance >= m_params.hold_threshold) continue;
-    h.held = candidate;
+    const int held = first_reached_particle(h.hand, t, state.current());
+    h.held = held;
     const Eigen::Index n3 = 3 * m_system.num_particles();
-    constraints.fix(candidate, hold_trajectory(t, h.hand, state.current().segment<3>(3 * candidate),
-                                               state.current().segment<3>(n3 + 3 * candidate)));
-    add_event(t, "hold", "", &h, candidate, -1, distance);
+    const Vec3 x = state.current().segment<3>(3 * held);
+    constraints.fix(held, hold_trajectory(t, h.hand, x, state.current().segment<3>(n3 + 3 * held)));
+    add_event(t, "hold", "", &h, held, -1, (x - motion->position).norm());
     changed = true;
   }
 }

@@ -48,7 +48,8 @@ class Manipulator {
   /// `track` may be null (no hands; keys only from it otherwise). It must outlive this object.
   Manipulator(ClothSystem& system, const HandTrack* track, const ManipulationParams& params);
 
-  /// Time of the first key strictly after t, or +infinity: callers stop their steps there.
+  /// Time of the first key, or of the end of a timed attach (attach_time), strictly after t,
+  /// or +infinity: callers stop their steps there.
   double next_key_time(double t) const;
   /// Applies everything due at time t (keys, holds, attach countdowns) after a step to state y.
   /// Returns the new state when the constraints or the state changed (restart the integrator).
@@ -76,7 +77,8 @@ class Manipulator {
   struct PendingAttach {
     int particle;
     int object_particle;
-    int steps_left;
+    int steps_left;  ///< steps until it is fixed (attach_iterations)
+    double due;      ///< time it is fixed (attach_time), or +infinity
   };
 
   void apply_key(double t, const std::string& key, detail::StateEdit& state, bool& changed);
@@ -94,6 +96,9 @@ class Manipulator {
   std::shared_ptr<const Trajectory> hold_trajectory(double t, Hand hand, const Vec3& x,
                                                     const Vec3& v) const;
   int nearest_free_particle(const Vec3& p, const Eigen::VectorXd& y, double& distance) const;
+  /// The free particle `hand` came within the hold threshold of first over (previous update,
+  /// t], the cloth taken as in `y`; -1 if none.
+  int first_reached_particle(Hand hand, double t, const Eigen::VectorXd& y) const;
 
   ClothSystem& m_system;
   const HandTrack* m_track;
@@ -101,6 +106,8 @@ class Manipulator {
   std::vector<HandState> m_hands;
   std::vector<PendingAttach> m_attaching;
   std::size_t m_next_key = 0;
+  /// Time of the previous update (the last step's start); NaN before the first.
+  double m_previous_update = std::numeric_limits<double>::quiet_NaN();
   std::vector<ManipulationEvent> m_events;
 };
 

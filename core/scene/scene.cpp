@@ -177,6 +177,8 @@ ManipulationParams read_manipulation(JsonReader in, const ClothParams& cloth) {
   }
   m.attach_iterations = in.integer("attach_iterations", m.attach_iterations);
   if (m.attach_iterations < 0) throw in.error("attach_iterations", "must not be negative");
+  m.attach_time = in.non_negative("attach_time", in.number("attach_time", m.attach_time));
+  in.at_most("attach_time", m.attach_time, limits::max_duration);
   m.hold_ramp = in.non_negative("hold_ramp", in.number("hold_ramp", m.hold_ramp));
   in.at_most("hold_ramp", m.hold_ramp, limits::max_duration);
   m.attach_at_contact_distance =

@@ -123,7 +123,8 @@ void InteractiveSimulation::set_block(bool velocities, const Eigen::Ref<const Ei
 }
 
 RunOutcome InteractiveSimulation::run_to_folder(const std::filesystem::path& out_dir,
-                                                bool overwrite) {
+                                                bool overwrite,
+                                                const std::function<bool()>& keep_going) {
   if (m_started || m_live_hands)
     throw InputError("Simulation.run", "out_dir",
                      "writes drapelab run's folder from the scene's start: call it on a new "
@@ -132,7 +133,7 @@ RunOutcome InteractiveSimulation::run_to_folder(const std::filesystem::path& out
   check_run_folder_not_experiment(out_dir);
   const nlohmann::json provenance = run_provenance();
   m_started = true;
-  return run_scene(*m_run, out_dir, provenance);
+  return run_scene(*m_run, out_dir, provenance, nullptr, keep_going);
 }
 
 nlohmann::json InteractiveSimulation::write_recording(const std::filesystem::path& file) const {

@@ -50,7 +50,8 @@ class InteractiveSimulation {
   void set_block(bool velocities, const Eigen::Ref<const Eigen::VectorXd>& values);
   /// Runs the whole scene into `out_dir` as `drapelab run` does (same files, same bytes).
   /// Only before the first step and without live hands; InputError otherwise.
-  RunOutcome run_to_folder(const std::filesystem::path& out_dir, bool overwrite);
+  RunOutcome run_to_folder(const std::filesystem::path& out_dir, bool overwrite,
+                           const std::function<bool()>& keep_going);
   /// Writes the live hands and keys so far as a drapelab recording (JSON Lines) and returns the
   /// scene that replays them up to time() (docs/live.md, the replay). Only with live hands.
   nlohmann::json write_recording(const std::filesystem::path& file) const;

@@ -61,13 +61,20 @@ class PythonSimulation {
   }
   bool closed() const { return !m_simulation; }
 
-  /// Runs `advance(simulation, keep_going)` without the GIL, taking it back every
-  /// signal_check_period to look for Ctrl-C (KeyboardInterrupt: the call stops between two
-  /// steps, the state whole); raises IntegratorFailure when the run has failed or diverged, now
-  /// or before.
+  /// Runs `advance(simulation, keep_going)` as interruptible() does; raises IntegratorFailure
+  /// when the run has failed or diverged, now or before.
   template <class Advance>
   bool stepping(Advance advance) {
     raise_if_failed(use());
+    const bool running = interruptible(advance);
+    raise_if_failed(use());
+    return running;
+  }
+  /// Runs `call(simulation, keep_going)` without the GIL, keep_going taking it back every
+  /// signal_check_period to look for Ctrl-C (KeyboardInterrupt once the call has returned:
+  /// it stops between two steps, the state whole).
+  template <class Call>
+  auto interruptible(Call call) {
     bool interrupted = false;
     auto next_check = std::chrono::steady_clock::now() + signal_check_period;
     const std::function<bool()> keep_going = [&] {
@@ -77,11 +84,9 @@ class PythonSimulation {
       next_check = std::chrono::steady_clock::now() + signal_check_period;
       return !interrupted;
     };
-    const bool running = without_gil(
-        [&](InteractiveSimulation& sim) { return advance(sim, keep_going); });
+    auto result = without_gil([&](InteractiveSimulation& sim) { return call(sim, keep_going); });
     if (interrupted) throw py::error_already_set();
-    raise_if_failed(use());
-    return running;
+    return result;
   }
   /// call(simulation) with the GIL released; other threads' calls meanwhile raise (use()).
   template <class Call>
@@ -230,12 +235,16 @@ void bind_simulation(py::module_& module) {
       .def("run",
            [](Self& s, py::handle out_dir, bool overwrite) {
              const std::string dir = py::str(py::module_::import("os").attr("fspath")(out_dir));
-             const RunOutcome outcome = s.without_gil(
-                 [&](InteractiveSimulation& sim) { return sim.run_to_folder(dir, overwrite); });
+             const RunOutcome outcome =
+                 s.interruptible([&](InteractiveSimulation& sim, const auto& keep_going) {
+                   return sim.run_to_folder(dir, overwrite, keep_going);
+                 });
              return python_of(outcome.summary);
            },
            py::arg("out_dir"), py::kw_only(), py::arg("overwrite") = false,
-           "Runs the scene into out_dir as drapelab run does; returns summary.json's contents.")
+           "Runs the scene into out_dir as drapelab run does; returns summary.json's contents. "
+           "Ctrl-C stops it between two steps (KeyboardInterrupt) and leaves the folder "
+           "without summary.json.")
       .def("write_recording",
            [](Self& s, py::handle file) {
              const std::string path = py::str(py::module_::import("os").attr("fspath")(file));

@@ -94,7 +94,8 @@ RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
 }
 
 RunOutcome run_scene(SceneSimulation& run, const std::filesystem::path& out_dir,
-                     const nlohmann::json& provenance, SimulationObserver* observer) {
+                     const nlohmann::json& provenance, SimulationObserver* observer,
+                     const std::function<bool()>& keep_going) {
   const Scene& scene = run.scene();
   Simulation& simulation = run.simulation();
   const ClothSystem& system = run.system();
@@ -118,7 +119,10 @@ RunOutcome run_scene(SceneSimulation& run, const std::filesystem::path& out_dir,
   if (observer) simulation.add_observer(*observer);
   if (restarts) simulation.add_observer(restarts->observer());
 
-  const RunStatus& status = simulation.run();
+  const RunStatus& status = simulation.run(keep_going);
+  if (!status.ended())
+    return {"interrupted", "stopped at t = " + std::to_string(simulation.time()) + " s",
+            exit_failure, {}};
   nlohmann::json summary = run_summary(run, energy);
   summary.update(provenance);
   if (restarts) summary["restart_error"] = restarts->write(out_dir / "restart_error.csv", simulation);

@@ -2,6 +2,7 @@
 // Runs one scene: builds the model, steps it with the chosen integrator, applies the events
 // between steps, watches for divergence, and writes the run's files.
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -22,7 +23,8 @@ enum ExitCode : int {
   exit_output = 4
 };
 
-/// How a run ended: `ok`, `diverged` or `failed` (a solver could not take a step).
+/// How a run ended: `ok`, `diverged`, `failed` (a solver could not take a step) or
+/// `interrupted` (stopped by its caller before the end; no summary).
 struct RunOutcome {
   std::string status;
   std::string reason;
@@ -41,8 +43,11 @@ nlohmann::json run_summary(const SceneSimulation& run, const EnergyWriter& energ
 RunOutcome run_scene(const Scene& scene, const std::filesystem::path& out_dir,
                      SimulationObserver* observer = nullptr);
 /// run_scene for a run built already and not stepped yet (the Python API's Simulation.run),
-/// with the provenance taken when it was asked for.
+/// with the provenance taken when it was asked for. When `keep_going` says no, the run stops
+/// between two steps and returns status "interrupted" without summary.json or state.csv: the
+/// folder is visibly unfinished (docs/outputs.md).
 RunOutcome run_scene(SceneSimulation& run, const std::filesystem::path& out_dir,
-                     const nlohmann::json& provenance, SimulationObserver* observer = nullptr);
+                     const nlohmann::json& provenance, SimulationObserver* observer = nullptr,
+                     const std::function<bool()>& keep_going = nullptr);
 
 }  // namespace drape

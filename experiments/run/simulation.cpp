@@ -59,8 +59,8 @@ bool Simulation::advance(double t_until, const std::function<bool()>& keep_going
   return !m_status.ended();
 }
 
-const RunStatus& Simulation::run() {
-  advance(m_settings.duration);
+const RunStatus& Simulation::run(const std::function<bool()>& keep_going) {
+  advance(m_settings.duration, keep_going);
   return m_status;
 }
 

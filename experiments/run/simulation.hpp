@@ -77,7 +77,9 @@ class Simulation {
   /// Returns false once the run has ended.
   bool advance(double t_until, const std::function<bool()>& keep_going = nullptr);
   /// Runs to the end of the scene and returns how it ended.
-  const RunStatus& run();
+  /// Advances to the end, or until keep_going (when given) says no: the status is then not
+  /// ended.
+  const RunStatus& run(const std::function<bool()>& keep_going = nullptr);
   /// Continues from `other`, a simulation of the same scene: its time, state, fixed particles
   /// and manipulation progress; this integrator restarts there and the status is `running`
   /// again. `other` is only read (a branch of the reference, reference_restarts.hpp).

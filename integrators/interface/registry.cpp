@@ -144,11 +144,10 @@ void validate_integrator_choice(const IntegratorOptions& options, const std::str
                        "'" + options.table + "' has no embedded method: adaptive steps need one");
   }
   const IntegratorDeclaration* info = find_integrator(options.name);
-  if (info && info->family != "implicit" && info->family != "imex" &&
-      !options.linear_solver.empty())
+  if (info && !info->named_keys.linear_solves && !options.linear_solver.empty())
     throw InputError(file, path + ".linear_solver",
-                     "integrator '" + options.name + "' is " + info->family +
-                         ": it takes no linear_solver");
+                     "integrator '" + options.name + "' solves no linear system with CG or LDLT: "
+                     "it takes no linear_solver");
   if (!reduced_solve_named(linear_solver_of(options)))
     throw InputError(file, path + ".linear_solver",
                      "unknown linear solver '" + options.linear_solver +

@@ -116,7 +116,7 @@ IntegratorDeclaration vbd_declaration() {
       false,
       "Vertex Block Descent (Chen et al. 2024): Gauss-Seidel 3x3 Newton steps on backward "
       "Euler's incremental potential",
-      {SettingKey::integer("iterations", 10, 1, 100000,
+      {SettingKey::integer("iterations", 20, 1, 100000,
                            "Gauss-Seidel sweeps over the particles per step"),
        SettingKey::choice("init", "velocity", {"inertia", "previous", "velocity", "adaptive"},
                           "start of a step's iterations: x_n + h v_n + h^2 g, x_n, "

@@ -193,7 +193,7 @@ IntegratorDeclaration xpbd_declaration() {
           false,
           "XPBD with small steps (Macklin et al. 2016, 2019): springs and contacts as compliant "
           "constraints",
-          {SettingKey::integer("substeps", 20, 1, 10000, "substeps per dt"),
+          {SettingKey::integer("substeps", 80, 1, 10000, "substeps per dt"),
            SettingKey::integer("iterations", 1, 1, 10000, "constraint sweeps per substep"),
            SettingKey::choice("sweep", "gauss-seidel", {"gauss-seidel", "jacobi"},
                               "gauss-seidel: springs in colour order, then contacts; jacobi: "

@@ -231,8 +231,9 @@ TEST(Keys, OutsideTheRunAreListedAsIgnoredNotPlayed) {
 // A cloth hanging against the front of a cylinder (radius 0.1 m) at the collision threshold, its
 // top row pinned, particle 33 resting just in front of the object particle on the centre line:
 // the hand takes particle 33, presses `a` there, and the attach error is read after
-// `iterations` steps.
-double attach_error(int iterations, const Vec3& gravity) {
+// `iterations` steps of dt or, with attach_time > 0, after that time.
+double attach_error(int iterations, const Vec3& gravity, double dt = 5e-4,
+                    double attach_time = 0.0) {
   auto cylinder = std::make_shared<const Dummy>(cylinder_sections(0.1, 0.0, 0.0, 1.2, 0.6, 31, 32));
   ClothParams p = testing::small_cloth(6, 6);
   p.origin = Vec3(-0.06, 1.1, 0.11);
@@ -249,17 +250,18 @@ double attach_error(int iterations, const Vec3& gravity) {
                                     frame(0.15, at_body, {"a"}), frame(2.0, at_body)});
   ManipulationParams params;
   params.attach_iterations = iterations;
+  params.attach_time = attach_time;
   Manipulator m(s, &track, params);
-  const double dt = 5e-4;
   Driver d(s, m, dt);
-  d.run_until(0.15 + dt * (iterations + 2));
+  const double dwell = attach_time > 0.0 ? attach_time : iterations * dt;
+  d.run_until(0.15 + dwell + 2 * dt);
   const auto& events = m.events();
   const auto fixed = std::find_if(events.begin(), events.end(),
                                   [](const ManipulationEvent& e) { return e.type == "attach_fixed"; });
   EXPECT_NE(fixed, events.end()) << describe(m, s.cloth());
   if (fixed == events.end()) return 1.0;
   EXPECT_TRUE(s.constraints().is_fixed(fixed->particle));
-  EXPECT_NEAR(fixed->t, 0.15 + iterations * dt, 1e-9) << "fixed after exactly its iterations";
+  EXPECT_NEAR(fixed->t, 0.15 + dwell, 1e-9) << "fixed after exactly its iterations or time";
   EXPECT_EQ(fixed->particle, 33);
   EXPECT_EQ(fixed->object_particle, cylinder->nearest(at_body).index);
   // The error is measured from where the particle was fixed.
@@ -283,6 +285,20 @@ TEST(Attach, EndsFixedNearTheTargetAndTheErrorShrinksWithIterations) {
   // The cloth's sag under gravity pulls the particle round the object particle: the error levels
   // off at that equilibrium instead of vanishing.
   EXPECT_NEAR(attach_error(8000, gravity), errors.back(), 0.05 * errors.back());
+}
+
+TEST(Attach, TimedAttachIsFixedAtItsTimeAtAnyStep) {
+  // attach_time dwells 12.3 ms at every step (the loop stops at its end, which no step lands
+  // on: attach_error checks the time); counted in steps, 12 of them last 12 ms at 1 ms and
+  // 3 ms at 0.25 ms, and the particle is fixed at another point of its flight off the object.
+  const Vec3 gravity(0, -9.81, 0);
+  const double timed_coarse = attach_error(0, gravity, 1e-3, 0.0123);
+  const double timed_fine = attach_error(0, gravity, 2.5e-4, 0.0123);
+  const double counted_coarse = attach_error(12, gravity, 1e-3);
+  const double counted_fine = attach_error(12, gravity, 2.5e-4);
+  EXPECT_LT(std::abs(timed_fine - timed_coarse), 0.02 * timed_fine);
+  EXPECT_GT(std::abs(counted_fine - counted_coarse), 10 * std::abs(timed_fine - timed_coarse))
+      << counted_coarse << " " << counted_fine << " " << timed_coarse << " " << timed_fine;
 }
 
 TEST(Map, FixesTheTopRowAndColumnZeroOnTheirMappedPositions) {

@@ -98,6 +98,8 @@ TEST(Scene, OutOfRangeValues) {
   EXPECT_EQ(error_for(with("duration=-1")), "scene.json: duration: must not be negative, got -1.0");
   EXPECT_EQ(error_for(with("collision.threshold=0")),
             "scene.json: collision.threshold: must be positive, got 0.0");
+  EXPECT_EQ(error_for(with("manipulation.attach_time=-0.1")),
+            "scene.json: manipulation.attach_time: must not be negative, got -0.1");
 }
 
 TEST(Scene, PinsOffTheGrid) {

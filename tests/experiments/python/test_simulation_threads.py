@@ -12,6 +12,19 @@ import drapelab
 from conftest import SCENES, child_env, scene
 
 
+def interrupt_after_start(script, started, wait):
+    """Runs script in a child Python, sends it Ctrl-C `wait` seconds after it printed `started`,
+    and checks that it caught KeyboardInterrupt (printed "interrupted") and exited 0."""
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, env=child_env())
+    assert child.stdout.readline().strip() == started
+    threading.Event().wait(wait)
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=60)
+    assert child.returncode == 0, err
+    assert out.strip() == "interrupted"
+
+
 def test_another_thread_runs_while_advance_steps():
     sim = drapelab.Simulation(scene("fig2_hold.json", duration=2.5))
     advancing = [False]
@@ -50,11 +63,24 @@ except KeyboardInterrupt:
     assert sim.step() is True and sim.time > t  # it goes on from where it stopped
     print("interrupted", flush=True)
 """
-    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE, text=True, env=child_env())
-    assert child.stdout.readline().strip() == "stepping"
-    threading.Event().wait(0.3)
-    child.send_signal(signal.SIGINT)
-    out, err = child.communicate(timeout=60)
-    assert child.returncode == 0, err
-    assert out.strip() == "interrupted"
+    interrupt_after_start(script, "stepping", 0.3)
+
+
+def test_ctrl_c_stops_run_and_leaves_the_folder_unfinished(tmp_path):
+    out = tmp_path / "run"
+    script = f"""
+import numpy as np, drapelab
+sim = drapelab.Simulation(drapelab.load_scene({str(SCENES / "fig2_hold.json")!r},
+                                              overrides={{"duration": 600}}))
+print("running", flush=True)
+try:
+    sim.run({str(out)!r})
+except KeyboardInterrupt:
+    assert 0 < sim.time < 600 and np.isfinite(sim.positions).all()
+    print("interrupted", flush=True)
+"""
+    interrupt_after_start(script, "running", 0.5)
+    # The folder was written up to the stop and is visibly unfinished: no summary.json.
+    assert (out / "energy.csv").exists()
+    assert not (out / "summary.json").exists()
+    assert not (out / "state.csv").exists()

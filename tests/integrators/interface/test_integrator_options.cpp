@@ -116,6 +116,18 @@ TEST(IntegratorOptions, KeysAreAcceptedWhereTheyAreRead) {
     EXPECT_EQ(error_of(options), "no error") << options.dump();
 }
 
+// linear_solver is read by the integrators that declare linear solves, whatever their family.
+TEST(IntegratorOptions, LinearSolverOnlyWhereALinearSystemIsSolved) {
+  for (const char* name : {"leapfrog", "arkode-erk", "xpbd", "projective-dynamics", "vbd"})
+    EXPECT_EQ(error_of({{"name", name}, {"dt", 1e-3}, {"linear_solver", "pcg-reduced"}}),
+              "scene.json: integrator.linear_solver: integrator '" + std::string(name) +
+                  "' solves no linear system with CG or LDLT: it takes no linear_solver");
+  for (const char* name : {"implicit-euler", "bdf2", "arkode-dirk", "arkode-imex"})
+    EXPECT_EQ(error_of({{"name", name}, {"dt", 1e-3}, {"linear_solver", "pcg-reduced"}}),
+              "no error")
+        << name;
+}
+
 // The line search's local phase: a sparse LU (the default) or BiCGSTAB, which needs a
 // preconditioner of S.
 TEST(IntegratorOptions, ExactSolveIsLuOrBicgstabWithAPreconditioner) {

@@ -178,7 +178,7 @@ TEST(Vbd, BadKeysAreInputErrorsNamingTheField) {
                               "scene.json", "integrator");
   EXPECT_EQ(o.setting_choice("init"), "adaptive");
   EXPECT_EQ(o.setting_number("rho"), 0.5);
-  EXPECT_EQ(o.setting_integer("iterations"), 10);
+  EXPECT_EQ(o.setting_integer("iterations"), 20);
   EXPECT_EQ(find_integrator("vbd")->family, "optimisation");
 }
 

@@ -1,0 +1,84 @@
+// The hold's particle located inside a step (docs/model.md section 7, "Hold"): the particle
+// the hand reaches first, whatever the step. Kept apart from test_manipulations.cpp, which is
+// at the size limit; both test core/manipulations/manipulations.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/manipulations/manipulations.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace drape {
+namespace {
+
+// A horizontal 6 x 6 cloth at y = 1 with 2 cm spacing, columns along x and rows along z,
+// pinned at two corners, and a hand 1 cm above it crossing row 2 along +x at 1.5 m/s from
+// x = -8 cm. The hand comes within the 1.5 cm threshold of (2, 0) first, at x = -1.12 cm,
+// t = 0.0459 s; at the 1/30 s step's end, t = 0.0667 s, it is 2 cm on, right above (2, 1).
+struct CrossingHand {
+  static Vec3 hand_at(double t) { return Vec3(-0.08 + 1.5 * t, 1.01, 0.04); }
+
+  std::unique_ptr<ClothSystem> system;
+  HandTrack track;
+
+  CrossingHand() {
+    ClothParams p = testing::small_cloth(6, 6);
+    p.origin = Vec3(0, 1, 0);
+    p.row_dir = Vec3(0, 0, 1);
+    system = std::make_unique<ClothSystem>(build_cloth(p), nullptr, ForceParams{});
+    system->constraints().fix_at(0, system->cloth().rest_positions.segment<3>(0));
+    system->constraints().fix_at(5, system->cloth().rest_positions.segment<3>(15));
+    // Samples every 10 ms from before the start: the track's interior is then the straight
+    // line (its end segments ease in and out).
+    std::vector<HandFrame> frames(61);
+    for (int k = 0; k < 61; ++k) {
+      frames[k].t = 0.01 * (k - 10);
+      frames[k].right = HandSample{hand_at(frames[k].t), false};
+    }
+    track = HandTrack(frames, SensorTransform{}, TimeMap{}, TrackPolicy{});
+  }
+
+  // The first hold when the manipulator is updated at the ends of steps of size h, the cloth
+  // at rest (the hold fixes the particle: once per scene).
+  ManipulationEvent first_hold(double h) {
+    ManipulationParams params;
+    params.hold_threshold = 0.015;
+    Manipulator manipulator(*system, &track, params);
+    const Eigen::VectorXd y = system->initial_state(0.0);
+    for (int k = 0; k * h < 0.2; ++k) {
+      manipulator.update(k * h, y);
+      for (const ManipulationEvent& e : manipulator.events())
+        if (e.type == "hold") return e;
+    }
+    return {};
+  }
+};
+
+TEST(HoldLocation, TakesTheParticleTheHandReachedFirstAtAnyStep) {
+  const double entry = (0.08 - std::sqrt(0.015 * 0.015 - 0.01 * 0.01)) / 1.5;
+  for (double h : {2e-4, 1e-3, 1.0 / 30.0, 0.05}) {
+    CrossingHand scene;
+    const int first = scene.system->cloth().index(2, 0);
+    const ManipulationEvent hold = scene.first_hold(h);
+    EXPECT_EQ(hold.particle, first) << h;
+    // Found at the first step end at or after the entry; the snap is the distance there.
+    EXPECT_GE(hold.t, entry - 1e-12) << h;
+    EXPECT_LT(hold.t, entry + h) << h;
+    const Vec3 hand = CrossingHand::hand_at(hold.t);
+    const Vec3 x = scene.system->cloth().rest_positions.segment<3>(3 * first);
+    EXPECT_NEAR(hold.value, (x - hand).norm(), 1e-9) << h;
+  }
+}
+
+TEST(HoldLocation, AtTheStepEndTheHandIsNearerTheNextParticle) {
+  // Why the location is needed: at the 1/30 s step's end the nearest particle is (2, 1).
+  CrossingHand scene;
+  const Vec3 hand = CrossingHand::hand_at(2.0 / 30.0);
+  const auto& x = scene.system->cloth().rest_positions;
+  const int first = scene.system->cloth().index(2, 0), next = scene.system->cloth().index(2, 1);
+  EXPECT_LT((x.segment<3>(3 * next) - hand).norm(), (x.segment<3>(3 * first) - hand).norm());
+  EXPECT_GT(scene.first_hold(1.0 / 30.0).value, 0.015);  // (2, 0) is past the threshold then
+}
+
+}  // namespace
+}  // namespace drape
