@@ -1,8 +1,8 @@
 #pragma once
 // The live server's task queue (docs/live.md, "Many connections"): each connection cpp-httplib
 // accepts gets a thread of its own at once, so no request waits for another connection to end.
-// A fixed pool (httplib::ThreadPool) held every worker with 64 open event streams or idle
-// sockets, and `POST /key` then waited seconds behind them.
+// A fixed pool (httplib::ThreadPool) is held whole by as many open event streams or idle sockets
+// as it has workers, and `POST /key` then waits seconds behind them.
 #include <condition_variable>
 #include <cstddef>
 #include <deque>

@@ -177,9 +177,9 @@ void serve_hand(httplib::Server& server, LiveSession& session) {
 
 // Binds 127.0.0.1:port with the system's longest queue of connections not yet accepted. Debian's
 // httplib listens with a queue of 5 (CPPHTTPLIB_LISTEN_BACKLOG, compiled into the library): a
-// burst of connections beyond it (a page's requests, many clients at once) had their SYNs
-// dropped and retried a second or more later (200 connections took 15 s to open). Linux takes a
-// second listen() on a listening socket as a new queue length (listen(2)).
+// burst of connections beyond it (a page's requests, many clients at once) has its SYNs
+// dropped and retried a second or more later (200 connections take 15 s to open). Linux takes
+// a second listen() on a listening socket as a new queue length (listen(2)).
 void listen_on_loopback(httplib::Server& server, int port) {
   socket_t bound = INVALID_SOCKET;
   server.set_socket_options([&bound](socket_t sock) {
@@ -242,8 +242,8 @@ int live(const LiveOptions& o) {
   server.new_task_queue = [] { return new ConnectionThreads(max_connection_threads); };
   // One request per connection. httplib waits for a connection's next request by polling its
   // socket every 10 ms for 5 s (keep_alive in httplib.h), and a handler cannot end its own
-  // connection: 185 streams refused with 503 kept their threads polling, 0.3 s more CPU a
-  // second on the cores the simulation needs. A new loopback connection costs far less.
+  // connection: 185 streams refused with 503 would keep their threads polling, 0.3 s more CPU
+  // a second on the cores the simulation needs. A new loopback connection costs far less.
   server.set_keep_alive_max_count(1);
   const std::string page = live_page(session.scene_json());
   server.Get("/", [&page](const httplib::Request&, httplib::Response& res) {
