@@ -109,8 +109,9 @@ class StreamSlot {
 };
 
 // GET /events: one server-sent event per new frame until the run ends or the client leaves;
-// 503 with the reason beyond max_event_streams open at once.
-void serve_events(httplib::Server& server, const LiveSession& session) {
+// 503 with the reason beyond max_event_streams open at once. Returns the count of open streams.
+std::shared_ptr<const std::atomic<int>> serve_events(httplib::Server& server,
+                                                     const LiveSession& session) {
   auto open = std::make_shared<std::atomic<int>>(0);
   server.Get("/events", [&session, open](const httplib::Request&, httplib::Response& res) {
     if (++*open > max_event_streams) {
@@ -128,13 +129,16 @@ void serve_events(httplib::Server& server, const LiveSession& session) {
     res.set_chunked_content_provider(
         "text/event-stream", [&session, last, slot](std::size_t, httplib::DataSink& sink) {
           for (;;) {
+            // Read before the frame: the run publishes its last frame before it finishes, so a
+            // finished run's frame read after is the last one, which the page must get.
+            const bool finished = session.finished();
             auto [number, frame] = session.frame();
             if (number != *last && frame) {
               *last = number;
               const std::string event = "data: " + *frame + "\n\n";
               return sink.write(event.data(), event.size());
             }
-            if (session.finished()) {
+            if (finished) {
               sink.done();
               return true;
             }
@@ -142,6 +146,7 @@ void serve_events(httplib::Server& server, const LiveSession& session) {
           }
         });
   });
+  return open;
 }
 
 // POST /hand: {"x": .., "y": .., "z": ..} in the scene frame, optionally "hand": "left" or
@@ -249,7 +254,7 @@ int live(const LiveOptions& o) {
   server.Get("/", [&page](const httplib::Request&, httplib::Response& res) {
     res.set_content(page, "text/html; charset=utf-8");
   });
-  serve_events(server, session);
+  const auto open_streams = serve_events(server, session);
   server.Get("/event-log", [&session](const httplib::Request&, httplib::Response& res) {
     res.set_header("Cache-Control", "no-cache");
     res.set_content(session.event_log().dump(), "application/json");
@@ -301,6 +306,13 @@ int live(const LiveOptions& o) {
   simulation_thread.join();
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
+  // The streams end with the run, within a frame or so; httplib's chunked writer stops at
+  // stop() without the closing chunk, and a page still reading the last frame (a busy machine,
+  // a slow browser) reported ERR_INCOMPLETE_CHUNKED_ENCODING. A client that does not read
+  // holds its stream up to httplib's 5 s write timeout: the wait has a bound of its own.
+  const auto streams_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (*open_streams > 0 && std::chrono::steady_clock::now() < streams_deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   server.stop();
   // A client that keeps a request open, sending a byte now and then, holds its worker, and
   // httplib's stop() waits for every worker: the run's files are written, so after 5 s the

@@ -6,8 +6,9 @@ of the 200 get frames, the other 185 a 503 that names the limit and the connecti
 once. Meanwhile POST /key and POST /hand, each on a new connection, answer within 100 ms every
 time (the latency the person driving the run sees; 10 of each, the largest asserted), every
 key's event reaches the run (GET /event-log, then summary.json) and the last posted hand is in
-the frames. With every socket closed a new stream is served again, and SIGINT ends the command
-at once with exit 0 and its files.
+the frames. With one stream closed a new one is served. SIGINT ends the others with the run's
+last frame and the closing chunk, and the command at once with exit 0 and its files. A stream
+whose reader lags when the run stops ends so too.
 Usage: live_load_check.py DRAPELAB SOURCE_DIR WORK_DIR
 """
 import http.client
@@ -31,11 +32,12 @@ LATENCY = 0.1  # s: what a person driving the run may wait for an answer
 
 
 class Streams:
-    """Raw sockets asking for GET /events, read on one thread: each socket's first bytes and
-    whether the server closed it."""
+    """Raw sockets asking for GET /events, read on one thread: each socket's first and last
+    bytes and whether it was closed."""
 
     def __init__(self, port, count):
         self.heads = [b""] * count
+        self.tails = [b""] * count
         self.closed = [False] * count
         self.lock = threading.Lock()
         self.selector = selectors.DefaultSelector()
@@ -66,6 +68,7 @@ class Streams:
                 with self.lock:
                     if len(self.heads[key.data]) < 4096:
                         self.heads[key.data] += data
+                    self.tails[key.data] = (self.tails[key.data] + data)[-(1 << 16):]
 
     def answered(self):
         """Each socket's head once every one has a frame or has been answered and closed."""
@@ -73,6 +76,16 @@ class Streams:
             heads, closed = list(self.heads), list(self.closed)
         done = all(c or b"data: {" in h for h, c in zip(heads, closed))
         return heads if done else None
+
+    def wait_closed(self, which, what):
+        """The last bytes of the sockets `which` once every one of them is closed."""
+        end = time.monotonic() + 10
+        while True:
+            with self.lock:
+                if all(self.closed[i] for i in which):
+                    return [self.tails[i] for i in which]
+            assert time.monotonic() < end, f"timed out waiting for {what}"
+            time.sleep(0.02)
 
     def close(self):
         self.running = False
@@ -108,6 +121,7 @@ def check_streams(streams):
     says = f"too many event streams: at most {STREAMS} pages may watch this run at once"
     assert all(says.encode() in h for h in refused), refused[0]
     print(f"{len(served)} streams served, {len(refused)} refused: {says}")
+    return [i for i, h in enumerate(heads) if h.startswith(b"HTTP/1.1 200")]
 
 
 def check_control(run):
@@ -149,8 +163,8 @@ def cpu_seconds(pid):
 
 
 def check_stream_again(port):
-    """A stream is served once the others are closed (the server sees a closed one at its next
-    frame, 1/30 s later)."""
+    """A stream is served once one of the others is closed (the server sees a closed one at its
+    next frame, 1/30 s later)."""
     end = time.monotonic() + 5
     while True:
         with socket.create_connection(("127.0.0.1", port), timeout=10) as s:
@@ -164,6 +178,41 @@ def check_stream_again(port):
         time.sleep(0.1)
 
 
+def check_slow_reader(drapelab, scene, work):
+    """A stream whose reader lags (its socket's buffers full when the run stops) still ends
+    with the run's last frame and the closing chunk: the server stops once its streams ended."""
+    with LiveRun(drapelab, scene, work / "slow_reader", "--live-hands", "--set", "duration=60",
+                 "--set", "cloth.rows=100", "--set", "cloth.cols=100") as run:
+        run.wait_for(lambda f: True, "the first frame")
+        with socket.socket() as slow:
+            slow.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+            slow.connect(("127.0.0.1", run.port))
+            slow.sendall(f"GET /events HTTP/1.1\r\nHost: 127.0.0.1:{run.port}\r\n\r\n".encode())
+            # 100 x 100 frames of 0.16 MB, 30 a second, fill the buffers (the sender's 4 MiB at
+            # most, tcp(7) tcp_wmem) within the second: the server's write waits for the reader
+            time.sleep(1.5)
+            received = []
+
+            def read_late():
+                time.sleep(0.3)
+                slow.settimeout(10)
+                data = b""
+                while chunk := slow.recv(1 << 20):
+                    data += chunk
+                received.append(data)
+
+            reader = threading.Thread(target=read_late)
+            reader.start()
+            code, _, stderr = run.stop()
+            reader.join()
+    assert code == 0, (code, stderr)
+    data = received[0]
+    assert data.endswith(b"\r\n0\r\n\r\n") and \
+        b'"status":"stopped"' in data.rsplit(b"data: ", 1)[1], data[-200:]
+    print(f"a slow reader: {len(data) / 1e6:.1f} MB, ending with the run's last frame and the "
+          f"closing chunk")
+
+
 def main():
     drapelab, source, work = check_arguments(sys.argv)
     scene = source / "experiments/scenes/fig2_hold.json"
@@ -172,20 +221,28 @@ def main():
         run.wait_for(lambda f: True, "the first frame")
         streams = Streams(run.port, OPENED)
         idle = [socket.create_connection(("127.0.0.1", run.port), timeout=10) for _ in range(IDLE)]
-        check_streams(streams)
+        served = check_streams(streams)
         # what the open connections cost the cores the simulation runs on (printed only)
         cpu = cpu_seconds(run.proc.pid)
         time.sleep(1.0)
         print(f"drapelab live's CPU with them open: {cpu_seconds(run.proc.pid) - cpu:.2f} s a "
               f"second (the simulation's included)")
         check_control(run)
-        streams.close()
         for s in idle:
             s.close()
+        streams.sockets[served[0]].shutdown(socket.SHUT_RDWR)
+        streams.wait_closed(served[:1], "the stream closed")
         check_stream_again(run.port)
+        # the streams still open end with the run: the last frame says how, then the closing
+        # chunk (without it a browser reports ERR_INCOMPLETE_CHUNKED_ENCODING)
         start = time.monotonic()
         code, stdout, stderr = run.stop()
         seconds = time.monotonic() - start
+        tails = streams.wait_closed(served[1:], "the streams' ends")
+        streams.close()
+        ended = b'"status":"stopped"'
+        assert all(t.endswith(b"\r\n0\r\n\r\n") and ended in t.rsplit(b"data: ", 1)[1]
+                   for t in tails), [t[-200:] for t in tails]
         assert code == 0, (code, stdout, stderr)
         assert "still holds a request open" not in stderr, stderr
         assert seconds < 5, f"SIGINT took {seconds:.1f} s to end the command"
@@ -193,7 +250,9 @@ def main():
         assert summary["status"] == "stopped", summary["status"]
         maps = [e for e in summary["events"] if e.get("key") == "m"]
         assert len(maps) == ROUNDS, summary["events"]
-        print(f"stopped in {seconds:.2f} s; summary.json has the {ROUNDS} keys' events")
+        print(f"stopped in {seconds:.2f} s, {len(tails)} streams ended with the run's last frame; "
+              f"summary.json has the {ROUNDS} keys' events")
+    check_slow_reader(drapelab, scene, work)
 
 
 if __name__ == "__main__":
