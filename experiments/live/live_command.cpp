@@ -20,8 +20,9 @@
 #include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_scene.hpp"
 
-// Last: its system headers define macros that Eigen's templates (through the scene) trip over.
-#include <httplib.h>
+// Last: it includes httplib.h, whose system headers define macros that Eigen's templates
+// (through the scene) trip over.
+#include "experiments/live/connection_threads.hpp"
 
 namespace drape {
 
@@ -86,21 +87,58 @@ void refuse_other_origins(httplib::Server& server, int port) {
   });
 }
 
-// GET /events: one server-sent event per new frame until the run ends or the client leaves.
-void serve_events(httplib::Server& server, const LiveSession& session) {
-  server.Get("/events", [&session](const httplib::Request&, httplib::Response& res) {
+// Pages that may watch at once (docs/live.md, "Many connections"): each stream costs a thread
+// and a copy of every frame, 30 a second, on the cores the simulation runs on; a browser opens
+// at most 6 connections to one server, so this is more than anyone's tabs.
+constexpr int max_event_streams = 16;
+// Connections served at once, each on its own thread (ConnectionThreads); beyond, a connection
+// waits for one to end. Far beyond the streams, so control requests never wait behind them.
+constexpr std::size_t max_connection_threads = 512;
+
+// An open event stream, counted while it lives: httplib drops the stream's provider, and so this,
+// however the stream ended (the run's end, the client gone, a write that timed out).
+class StreamSlot {
+ public:
+  explicit StreamSlot(std::shared_ptr<std::atomic<int>> open) : m_open(std::move(open)) {}
+  StreamSlot(const StreamSlot&) = delete;
+  StreamSlot& operator=(const StreamSlot&) = delete;
+  ~StreamSlot() { --*m_open; }
+
+ private:
+  std::shared_ptr<std::atomic<int>> m_open;
+};
+
+// GET /events: one server-sent event per new frame until the run ends or the client leaves;
+// 503 with the reason beyond max_event_streams open at once. Returns the count of open streams.
+std::shared_ptr<const std::atomic<int>> serve_events(httplib::Server& server,
+                                                     const LiveSession& session) {
+  auto open = std::make_shared<std::atomic<int>>(0);
+  server.Get("/events", [&session, open](const httplib::Request&, httplib::Response& res) {
+    if (++*open > max_event_streams) {
+      --*open;
+      res.status = 503;
+      res.set_content(fmt::format("too many event streams: at most {} pages may watch this run "
+                                  "at once; close one and reload\n",
+                                  max_event_streams),
+                      "text/plain");
+      return;
+    }
+    auto slot = std::make_shared<StreamSlot>(open);
     res.set_header("Cache-Control", "no-cache");
     auto last = std::make_shared<long>(0);
     res.set_chunked_content_provider(
-        "text/event-stream", [&session, last](std::size_t, httplib::DataSink& sink) {
+        "text/event-stream", [&session, last, slot](std::size_t, httplib::DataSink& sink) {
           for (;;) {
+            // Read before the frame: the run publishes its last frame before it finishes, so a
+            // finished run's frame read after is the last one, which the page must get.
+            const bool finished = session.finished();
             auto [number, frame] = session.frame();
             if (number != *last && frame) {
               *last = number;
               const std::string event = "data: " + *frame + "\n\n";
               return sink.write(event.data(), event.size());
             }
-            if (session.finished()) {
+            if (finished) {
               sink.done();
               return true;
             }
@@ -108,6 +146,7 @@ void serve_events(httplib::Server& server, const LiveSession& session) {
           }
         });
   });
+  return open;
 }
 
 // POST /hand: {"x": .., "y": .., "z": ..} in the scene frame, optionally "hand": "left" or
@@ -141,6 +180,24 @@ void serve_hand(httplib::Server& server, LiveSession& session) {
   });
 }
 
+// Binds 127.0.0.1:port with the system's longest queue of connections not yet accepted. Debian's
+// httplib listens with a queue of 5 (CPPHTTPLIB_LISTEN_BACKLOG, compiled into the library): a
+// burst of connections beyond it (a page's requests, many clients at once) has its SYNs
+// dropped and retried a second or more later (200 connections take 15 s to open). Linux takes
+// a second listen() on a listening socket as a new queue length (listen(2)).
+void listen_on_loopback(httplib::Server& server, int port) {
+  socket_t bound = INVALID_SOCKET;
+  server.set_socket_options([&bound](socket_t sock) {
+    httplib::default_socket_options(sock);
+    bound = sock;
+  });
+  const bool listening = server.bind_to_port("127.0.0.1", port) && ::listen(bound, SOMAXCONN) == 0;
+  server.set_socket_options(httplib::default_socket_options);  // `bound` goes out of scope
+  if (!listening)
+    throw InputError("--port", "",
+                     fmt::format("cannot listen on 127.0.0.1:{} (in use or not allowed)", port));
+}
+
 // The exit status of a session that ended with `status` (LiveSession::run).
 int exit_status_of(const std::string& status) {
   return status == "ok" || status == "stopped" ? exit_ok : exit_diverged;
@@ -169,9 +226,7 @@ int live(const LiveOptions& o) {
   std::atomic<LiveSession*> frames_to{nullptr};
   httplib::Server server;
   // Loopback only: the page drives a simulation, nobody else on the network should.
-  if (!server.bind_to_port("127.0.0.1", o.port))
-    throw InputError("--port", "",
-                     fmt::format("cannot listen on 127.0.0.1:{} (in use or not allowed)", o.port));
+  listen_on_loopback(server, o.port);
   std::unique_ptr<SensorBridge> sensor;
   if (o.sensor_port)
     sensor = std::make_unique<SensorBridge>(
@@ -186,16 +241,20 @@ int live(const LiveOptions& o) {
   LiveSession& session = *owned_session;
   frames_to = &session;
   // A request body is a hand position or a key: 1 MiB is far beyond either, and a client
-  // sending gigabytes must get 413, not the server's memory. Each page's event stream holds a
-  // worker for as long as the page is open, so there are more workers than tabs anyone opens.
+  // sending gigabytes must get 413, not the server's memory.
   server.set_payload_max_length(1 << 20);
   refuse_other_origins(server, o.port);
-  server.new_task_queue = [] { return new httplib::ThreadPool(64); };
+  server.new_task_queue = [] { return new ConnectionThreads(max_connection_threads); };
+  // One request per connection. httplib waits for a connection's next request by polling its
+  // socket every 10 ms for 5 s (keep_alive in httplib.h), and a handler cannot end its own
+  // connection: 185 streams refused with 503 would keep their threads polling, 0.3 s more CPU
+  // a second on the cores the simulation needs. A new loopback connection costs far less.
+  server.set_keep_alive_max_count(1);
   const std::string page = live_page(session.scene_json());
   server.Get("/", [&page](const httplib::Request&, httplib::Response& res) {
     res.set_content(page, "text/html; charset=utf-8");
   });
-  serve_events(server, session);
+  const auto open_streams = serve_events(server, session);
   server.Get("/event-log", [&session](const httplib::Request&, httplib::Response& res) {
     res.set_header("Cache-Control", "no-cache");
     res.set_content(session.event_log().dump(), "application/json");
@@ -247,6 +306,13 @@ int live(const LiveOptions& o) {
   simulation_thread.join();
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
+  // The streams end with the run, within a frame or so; httplib's chunked writer stops at
+  // stop() without the closing chunk, and a page still reading the last frame (a busy machine,
+  // a slow browser) reported ERR_INCOMPLETE_CHUNKED_ENCODING. A client that does not read
+  // holds its stream up to httplib's 5 s write timeout: the wait has a bound of its own.
+  const auto streams_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (*open_streams > 0 && std::chrono::steady_clock::now() < streams_deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   server.stop();
   // A client that keeps a request open, sending a byte now and then, holds its worker, and
   // httplib's stop() waits for every worker: the run's files are written, so after 5 s the

@@ -246,7 +246,11 @@
     source.onmessage = function (m) { self.receive(JSON.parse(m.data)); };
     source.onerror = function () {
       // After the last frame the server closes the stream; without one it went away mid-run.
-      if (!self.ended) document.getElementById('rtf').textContent = 'connection lost: the server is gone';
+      // Before any frame, the server may also have refused the stream (503: as many pages as it
+      // serves already watch, docs/live.md "Many connections"); EventSource does not say which.
+      if (!self.ended) document.getElementById('rtf').textContent = self.latest
+        ? 'connection lost: the server is gone'
+        : 'no stream: the server is gone or already streams to as many pages as it allows (close one and reload)';
       source.close();
     };
   };

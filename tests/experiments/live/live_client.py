@@ -4,12 +4,22 @@ The frames are GET /events's server-sent events (docs/live.md), read on a thread
 can wait for a condition on the latest frame with a time limit.
 """
 import json
+import pathlib
+import shutil
 import socket
 import subprocess
 import threading
 import time
 import urllib.error
 import urllib.request
+
+
+def check_arguments(argv):
+    """(DRAPELAB, SOURCE_DIR, WORK_DIR) of a check's command line, WORK_DIR emptied."""
+    drapelab, source, work = argv[1], pathlib.Path(argv[2]), pathlib.Path(argv[3])
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    return drapelab, source, work
 
 
 def free_port():

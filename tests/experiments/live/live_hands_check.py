@@ -15,13 +15,12 @@ import base64
 import json
 import math
 import pathlib
-import shutil
 import socket
 import struct
 import sys
 import time
 
-from live_client import LiveRun, free_port, replay_events
+from live_client import LiveRun, check_arguments, free_port, replay_events
 
 HELD = 14 * 20 + 10  # particle (14, 10) of the 20 x 20 cloth: x = 0.01, y = 1.02, z = 0.22
 
@@ -51,9 +50,7 @@ def check_validation(run):
 
 
 def main():
-    drapelab, source, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-    shutil.rmtree(work, ignore_errors=True)
-    work.mkdir(parents=True)
+    drapelab, source, work = check_arguments(sys.argv)
     scene = source / "experiments/scenes/fig2_hold.json"
     out = work / "live"
     sensor_port = free_port()
