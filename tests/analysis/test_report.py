@@ -344,30 +344,6 @@ class ReportProvenanceAndViewerTest(unittest.TestCase):
             plt.close("all")
         self.assertEqual(texts, ["1 of 2", "no value (2 of 2)"])  # 4 ms: no value in either run
 
-    def test_a_snapshot_of_an_event_is_the_runs_own_and_none_for_a_run_without_it(self):
-        # The instants come from the first run's events; a run that never held has no "hold"
-        # frame (it was drawn at the first run's hold time, under the hold's name).
-        from drapeanalysis import snapshots
-        trace = {"t": np.array([0.0, 0.5, 0.52, 1.0])}
-        held = {"events": [{"type": "hold", "t": 0.52}, {"type": "ignored", "t": 0.7}]}
-        self.assertEqual(snapshots.run_frame(trace, held, "hold", 0), 2)
-        self.assertEqual(snapshots.run_frame(trace, held, "end", 0), 3)
-        with self.assertRaises(KeyError):
-            snapshots.run_frame(trace, {"events": [{"type": "ignored", "t": 0.5}]}, "hold", 0)
-
-    def test_side_by_side_pairs_leapfrog_with_an_implicit_method_at_their_smallest_steps(self):
-        from drapeanalysis import viewer_pages
-        rows = [{"id": "ref", "integrator": "leapfrog", "integrator.dt": 1e-5, "is_reference": True},
-                {"id": "lf2", "integrator": "leapfrog", "integrator.dt": 2e-4},
-                {"id": "lf1", "integrator": "leapfrog", "integrator.dt": 1e-4},
-                {"id": "dirk", "integrator": "arkode-dirk", "integrator.dt": 1e-3},
-                {"id": "ie2", "integrator": "implicit-euler", "integrator.dt": 1e-2},
-                {"id": "ie1", "integrator": "implicit-euler", "integrator.dt": 2e-3}]
-        self.assertEqual([r["id"] for r in viewer_pages.side_by_side(rows)], ["lf1", "ie1"])
-        # One kind only: the reference and the finest run; a single run: no page.
-        self.assertEqual([r["id"] for r in viewer_pages.side_by_side(rows[:3])], ["ref", "lf1"])
-        self.assertEqual(viewer_pages.side_by_side(rows[1:2]), [])
-
     def test_html_links_the_viewer_pages_and_says_why_a_run_has_none(self):
         rows = [dict(id="a", scene="scenes/s.json", integrator="leapfrog", **{"integrator.dt": 0.001}),
                 dict(id="b", scene="scenes/s.json", integrator="implicit-euler", **{"integrator.dt": 0.002}),
