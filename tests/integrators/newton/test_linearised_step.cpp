@@ -11,19 +11,8 @@
 namespace drape {
 namespace {
 
-/// p(t) = (u t, 1, 0): a prescribed motion at speed u.
-class Slide final : public Trajectory {
- public:
-  explicit Slide(double speed) : m_speed(speed) {}
-  Vec3 position(double t) const override { return Vec3(m_speed * t, 1.0, 0.0); }
-  Vec3 velocity(double) const override { return Vec3(m_speed, 0.0, 0.0); }
-  Vec3 acceleration(double) const override { return Vec3::Zero(); }
-
- private:
-  double m_speed;
-};
-
-// Two particles with no spring (every stiffness 0), air damping c, the first on a Slide.
+// Two particles with no spring (every stiffness 0), air damping c, the first sliding at 0.3 m/s
+// along x.
 struct Falling {
   ClothParams params = [] {
     ClothParams p = testing::small_cloth(1, 2);
@@ -33,7 +22,10 @@ struct Falling {
   }();
   ClothSystem system{build_cloth(params), nullptr, ForceParams{}};
   ReducedNewtonSolver solver{system, ReducedSolve::sparse_ldlt, ForceSplit::all, 1e-12, 100};
-  Falling() { system.constraints().fix(0, std::make_shared<Slide>(0.3)); }
+  Falling() {
+    system.constraints().fix(0, std::make_shared<testing::LinearTrajectory>(
+                                    Vec3(0.0, 1.0, 0.0), Vec3(0.3, 0.0, 0.0)));
+  }
 };
 
 TEST(LinearisedStep, BackwardEulerHasItsClosedForm) {
