@@ -12,6 +12,7 @@
 
 #include "experiments/run/run_scene.hpp"
 #include "experiments/viewer/csv_table.hpp"
+#include "tests/experiments/run/run_fixtures.hpp"
 
 namespace drape {
 namespace {
@@ -39,11 +40,7 @@ struct Npy {
 };
 
 Scene hanging(double event_trace_interval) {
-  Scene scene = parse_scene(nlohmann::json::parse(R"({
-    "cloth": {"rows": 3, "cols": 4, "spacing": 0.02, "origin": [0, 1.4, 0],
-              "particle_mass": 0.001, "k_structural": 20},
-    "pins": [[0, 0]], "dummy": null,
-    "integrator": {"name": "leapfrog", "dt": 0.001}, "duration": 0.05})"), "test.json", ".");
+  Scene scene = testing::hanging_scene(0.05);
   scene.output.event_trace_interval = event_trace_interval;
   scene.output.event_trace_window = 0.02;
   scene.output.trace_interval = 0.01;
