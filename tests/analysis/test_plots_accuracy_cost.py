@@ -13,7 +13,6 @@ import numpy as np
 
 from runfolder import ANALYSIS_DIR  # noqa: F401  (makes drapeanalysis importable)
 from drapeanalysis import plots, plots_accuracy_cost, stats, style  # noqa: E402
-from drapeanalysis.integrator_order import integrator_order  # noqa: E402
 from drapeanalysis.figure_catalogue import CAPTIONS, KNOWN_METRICS, figure_metrics  # noqa: E402
 
 PARAMETERS = ["integrator.name", "integrator.dt", "perturbation.seed"]
@@ -124,16 +123,6 @@ class AccuracyCostTest(unittest.TestCase):
         self.assertEqual(style.INTEGRATOR_COLORS["leapfrog"], "tab:blue")
         self.assertEqual(style.INTEGRATOR_COLORS["arkode-imex"], "tab:brown")
         self.assertIn(style.INTEGRATOR_COLORS["vbd-declared-test"], style.EXTRA_COLORS)
-
-    def test_colour_order_is_the_registry_order_else_the_table_names_sorted(self):
-        rows = [{"integrator": "vbd"}, {"integrator": "leapfrog"}, {"integrator": "bdf2"}]
-        self.assertEqual(integrator_order(None, rows), ["bdf2", "leapfrog", "vbd"])
-        program = Path(self._tmp.name) / "drapelab"
-        program.write_text("#!/bin/sh\necho '[{\"name\": \"leapfrog\"}, {\"name\": \"xpbd\"}, "
-                           "{\"name\": \"vbd\"}]'\n")
-        program.chmod(0o755)
-        self.assertEqual(integrator_order(program, rows), ["leapfrog", "xpbd", "vbd", "bdf2"])
-        self.assertEqual(integrator_order(Path(self._tmp.name) / "missing", rows), ["bdf2", "leapfrog", "vbd"])
 
     def test_steps_and_the_settings_of_one_integrator_are_labelled(self):
         rows = ROWS + [run("implicit-euler", 1 / 30, s, wall=0.5, sim=1.2, error=1e-2, vibration=1e-4)

@@ -254,41 +254,6 @@ class ReportProvenanceAndViewerTest(unittest.TestCase):
             self.assertIn(text, page)
         self.assertIn("<th>CPU</th><td>not recorded</td>", report.provenance_html([{"id": "x"}]))
 
-    def test_summary_tables_group_the_repeats_of_an_ensemble(self):
-        # Three repeats (seeds 1-3) of one method: one row, mean 20 mm +- t(0.975, 2) 10 / sqrt 3.
-        rows = [{"id": f"r{k}", "scene": "scenes/s.json", "integrator": "leapfrog", "integrator.dt": 0.001,
-                 "perturbation.seed": k, "attach_error_mean": 0.01 * k, "status": "ok"} for k in (1, 2, 3)]
-        page = report_summary.summary_tables(rows, ["integrator.dt", "perturbation.seed"])
-        self.assertIn("20 &plusmn; 25&dagger; (n=3)", page)  # 2 - 2.5 < 0: marked
-        self.assertNotIn("seed=", page)
-
-    def test_summary_tables_give_diverged_runs_a_dash_and_count_the_runs_with_a_value(self):
-        # Two diverged repeats whose drift reads 0 (they blew up before their first energy row)
-        # and two finished ones of which only one held: a dash, and "n=1 of 2", not a bare mean.
-        def run(k, method, status, **metrics):
-            return {"id": f"{method}{k}", "scene": "scenes/s.json", "integrator": method,
-                    "dt": 0.002, "perturbation.seed": k, "status": status, **metrics}
-        rows = [run(1, "leapfrog", "diverged", energy_drift_max_rel=0.0, wall_seconds=1e-4),
-                run(2, "leapfrog", "diverged", energy_drift_max_rel=0.0, wall_seconds=1e-4),
-                run(1, "implicit-euler", "ok", energy_drift_max_rel=0.2, vibration_rms_after_hold=0.004),
-                run(2, "implicit-euler", "ok", energy_drift_max_rel=0.4)]
-        page = report_summary.summary_tables(rows, ["perturbation.seed"])
-        drift = page[page.index("energy"):]
-        self.assertIn("<tr><th>leapfrog dt=0.002</th><td>diverged (2 of 2)</td></tr>", drift)
-        # 0.3 +- 1.3 reaches below 0: the dagger says the mean of 2 values is not well determined.
-        self.assertIn("<td>0.3 &plusmn; 1.3&dagger; (n=2)</td>", drift)
-        self.assertIn("<td>4 (n=1 of 2)</td>", page)
-        self.assertNotIn("<td>0</td>", page)
-
-    def test_a_cell_counts_the_runs_that_did_not_finish(self):
-        # Three repeats, one failed: "n=2 of 3; 1 did not finish"; the interval 1.5 +- 6.4 of
-        # {1, 2} (t(0.975, 1) = 12.706, s = 0.707) reaches below 0 and is marked.
-        rows = [{"id": f"r{k}", "scene": "scenes/s.json", "integrator": "leapfrog", "dt": 0.001,
-                 "perturbation.seed": k, "status": status, "wall_seconds": w}
-                for k, (status, w) in enumerate((("ok", 1.0), ("ok", 2.0), ("failed", 9.0)))]
-        page = report_summary.summary_tables(rows, ["perturbation.seed"])
-        self.assertIn("<td>1.5 &plusmn; 6.4&dagger; (n=2 of 3; 1 did not finish)</td>", page)
-
     def test_an_attach_never_fixed_is_not_a_dash(self):
         # Two finished repeats: one fixed its attach (4 mm), one ended before fixing it; a third
         # method never fixed one at all. A dash stays for "does not apply" only.
@@ -304,20 +269,6 @@ class ReportProvenanceAndViewerTest(unittest.TestCase):
         table = report.html_table(rows, ["perturbation.seed"])
         self.assertIn("<td>4</td>", table)  # 0.004 m in the table's mm
         self.assertIn("<td>1 not fixed</td>", table)
-
-    def test_the_banner_names_every_run_that_did_not_finish(self):
-        rows = [{"id": "a", "scene": "scenes/s.json", "integrator": "leapfrog", "dt": 0.002,
-                 "status": "diverged", "sim_time": 0.006, "duration": 1.0,
-                 "reason": "runaway: a particle moves at 888 m/s"},
-                {"id": "b", "scene": "scenes/s.json", "integrator": "leapfrog", "dt": 0.0002,
-                 "status": "ok", "sim_time": 1.0, "duration": 1.0}]
-        banner = report_summary.unfinished_banner(rows, [])
-        self.assertIn("<b>1 of 2 runs did not finish</b> (diverged)", banner)
-        self.assertIn("<td>leapfrog dt=0.002</td><td>s</td><td>diverged</td><td>0.006 s of 1 s</td>"
-                      "<td>runaway: a particle moves at 888 m/s</td>", banner)
-        self.assertEqual(report_summary.unfinished_banner(rows[1:], []), "")
-        many = [dict(rows[0], id=str(k)) for k in range(report_summary.BANNER_ROWS + 1)]
-        self.assertIn("<details><summary>the 9 runs</summary>", report_summary.unfinished_banner(many, []))
 
     def test_a_point_from_some_of_an_ensembles_runs_says_how_many(self):
         # Two repeats at each step: both finite at 1 ms, one diverged (no value) at 2 ms, none
@@ -343,30 +294,6 @@ class ReportProvenanceAndViewerTest(unittest.TestCase):
                              "vibration_vs_dt")
             plt.close("all")
         self.assertEqual(texts, ["1 of 2", "no value (2 of 2)"])  # 4 ms: no value in either run
-
-    def test_a_snapshot_of_an_event_is_the_runs_own_and_none_for_a_run_without_it(self):
-        # The instants come from the first run's events; a run that never held has no "hold"
-        # frame (it was drawn at the first run's hold time, under the hold's name).
-        from drapeanalysis import snapshots
-        trace = {"t": np.array([0.0, 0.5, 0.52, 1.0])}
-        held = {"events": [{"type": "hold", "t": 0.52}, {"type": "ignored", "t": 0.7}]}
-        self.assertEqual(snapshots.run_frame(trace, held, "hold", 0), 2)
-        self.assertEqual(snapshots.run_frame(trace, held, "end", 0), 3)
-        with self.assertRaises(KeyError):
-            snapshots.run_frame(trace, {"events": [{"type": "ignored", "t": 0.5}]}, "hold", 0)
-
-    def test_side_by_side_pairs_leapfrog_with_an_implicit_method_at_their_smallest_steps(self):
-        from drapeanalysis import viewer_pages
-        rows = [{"id": "ref", "integrator": "leapfrog", "integrator.dt": 1e-5, "is_reference": True},
-                {"id": "lf2", "integrator": "leapfrog", "integrator.dt": 2e-4},
-                {"id": "lf1", "integrator": "leapfrog", "integrator.dt": 1e-4},
-                {"id": "dirk", "integrator": "arkode-dirk", "integrator.dt": 1e-3},
-                {"id": "ie2", "integrator": "implicit-euler", "integrator.dt": 1e-2},
-                {"id": "ie1", "integrator": "implicit-euler", "integrator.dt": 2e-3}]
-        self.assertEqual([r["id"] for r in viewer_pages.side_by_side(rows)], ["lf1", "ie1"])
-        # One kind only: the reference and the finest run; a single run: no page.
-        self.assertEqual([r["id"] for r in viewer_pages.side_by_side(rows[:3])], ["ref", "lf1"])
-        self.assertEqual(viewer_pages.side_by_side(rows[1:2]), [])
 
     def test_html_links_the_viewer_pages_and_says_why_a_run_has_none(self):
         rows = [dict(id="a", scene="scenes/s.json", integrator="leapfrog", **{"integrator.dt": 0.001}),

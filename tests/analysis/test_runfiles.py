@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 import runfolder
-from drapeanalysis import metrics, results_file, runfiles
+from drapeanalysis import metrics, runfiles
 
 
 class BadInputTest(unittest.TestCase):
@@ -261,74 +261,14 @@ class ValueTest(runfolder.RunFolderTest):
 
 
 class DocumentTest(runfolder.RunFolderTest):
-    """results.json and summary.json without a field the analysis reads, or with a value of the
-    wrong type there: a ValueError naming the file and the field (was a KeyError or TypeError)."""
-
-    RESULTS = {"name": "n", "question": "q", "metrics": [], "parameters": ["integrator.dt"], "plan_size": 1,
-               "columns": ["id", "run_dir"], "runs": [{"id": "a", "run_dir": "runs/a", "status": "ok"}]}
+    """summary.json without a field the analysis reads, or with a value of the wrong type there:
+    a ValueError naming the file and the field (results.json's: test_results_file.py)."""
 
     def assertRefused(self, name, doc, message, read):
         (self.directory / name).write_text(json.dumps(doc))
         with self.assertRaises(ValueError) as error:
             read(self.directory)
         self.assertEqual(str(error.exception), f"{self.directory / name}: {message}")
-
-    def test_results_json(self):
-        runs = self.RESULTS["runs"]
-        for doc, message in (
-                ([], "expected a JSON object, got a list"),
-                ({k: v for k, v in self.RESULTS.items() if k != "runs"}, "runs: missing"),
-                ({**self.RESULTS, "parameters": "integrator.dt"}, 'parameters: expected a list of strings, got "integrator.dt"'),
-                ({**self.RESULTS, "columns": ["id", 3]}, "columns: expected a list of strings, got 3"),
-                ({**self.RESULTS, "plan_size": True}, "plan_size: expected an integer, got true"),
-                ({**self.RESULTS, "plan_size": 0}, "plan_size: 0, but runs lists 1 runs (merge writes at most the plan's runs)"),
-                ({**self.RESULTS, "plan_size": -1}, "plan_size: -1, but runs lists 1 runs (merge writes at most the plan's runs)"),
-                ({**self.RESULTS, "metrics": ["vibration", "vibrations"]},
-                 'metrics[1]: unknown metric "vibrations" (known: attach_error, energy_drift, mapping_error, '
-                 'restart_error, snapshots, stable_dt, vibration, work_precision)'),
-                ({**self.RESULTS, "runs": [1]}, "runs: expected a list of objects, got 1"),
-                ({**self.RESULTS, "runs": [{"run_dir": "runs/a", "status": "ok"}]}, "runs[0].id: expected a non-empty string, got null"),
-                ({**self.RESULTS, "runs": [{"id": "a", "run_dir": "", "status": "ok"}]}, 'runs[0].run_dir: expected a non-empty string, got ""'),
-                ({**self.RESULTS, "runs": [{"id": "../a", "run_dir": "runs/a", "status": "ok"}]},
-                 "runs[0].id: '../a' is not a file name (it names the run's animation and viewer page)"),
-                ({**self.RESULTS, "runs": runs + runs}, "runs[1].id: 'a' repeats an earlier run's id"),
-                ({**self.RESULTS, "runs": [{"id": "a", "run_dir": "runs/a", "status": "banana"}]},
-                 'runs[0].status: expected one of ok, diverged, failed, error, crashed, got "banana"'),
-                ({**self.RESULTS, "runs": [{"id": "a", "run_dir": "runs/a"}]},
-                 "runs[0].status: expected one of ok, diverged, failed, error, crashed, got null"),
-                # drapelab writes null, never nan: the report blanked a nan without a word.
-                ({**self.RESULTS, "runs": [{**runs[0], "wall_seconds": float("nan")}]},
-                 "runs[0].wall_seconds: not a finite number (drapelab writes null, never nan or inf)"),
-                ({**self.RESULTS, "runs": [{**runs[0], "energy_final": "nan"}]},
-                 'runs[0].energy_final: expected a number or null, got "nan"'),
-                ({**self.RESULTS, "runs": [{**runs[0], "counters": {"steps": float("inf")}}]},
-                 "runs[0].counters.steps: not a finite number (drapelab writes null, never nan or inf)")):
-            with self.subTest(message):
-                self.assertRefused("results.json", doc, message, results_file.load_experiment)
-        (self.directory / "results.json").write_text(json.dumps(self.RESULTS))
-        self.assertEqual(results_file.load_experiment(self.directory), self.RESULTS)
-
-    def test_results_of_another_plan_than_experiment_json(self):
-        # A resumed experiment stopped before it wrote its table left the last one's beside a
-        # plan of three runs; the report showed the two old runs as the experiment.
-        (self.directory / "results.json").write_text(json.dumps(self.RESULTS))
-        plan = {"plan_size": 1, "plan": [{"id": "a"}]}
-        (self.directory / "experiment.json").write_text(json.dumps(plan))
-        results_file.check_plan(self.directory, self.RESULTS)
-        for header, stale in (({"plan_size": 3, "plan": [{"id": "a"}, {"id": "b"}, {"id": "c"}]},
-                               "results.json plans 1 runs, experiment.json 3"),
-                              ({"plan_size": 1, "plan": [{"id": "b"}]},
-                               "results.json's run 'a' is not in experiment.json's plan")):
-            (self.directory / "experiment.json").write_text(json.dumps(header))
-            with self.subTest(stale), self.assertRaises(ValueError) as error:
-                results_file.check_plan(self.directory, self.RESULTS)
-            self.assertEqual(str(error.exception), f"{self.directory}: {stale}: the table is of another "
-                             "invocation (one stopped before it wrote its own); run `drapelab experiment` "
-                             "again to finish it, then report")
-        (self.directory / "experiment.json").write_text(json.dumps({"plan_size": "1"}))
-        with self.assertRaises(ValueError) as error:
-            results_file.check_plan(self.directory, self.RESULTS)
-        self.assertIn("experiment.json: expected plan_size (an integer) and plan (a list)", str(error.exception))
 
     def test_summary_json(self):
         ok = {"status": "ok"}

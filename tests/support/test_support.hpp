@@ -52,6 +52,19 @@ inline Eigen::VectorXd fd_gradient(const std::function<double(const Eigen::Vecto
   return g;
 }
 
+/// p(t) = start + velocity t: a prescribed motion at a constant velocity.
+class LinearTrajectory final : public Trajectory {
+ public:
+  LinearTrajectory(const Vec3& start, const Vec3& velocity)
+      : m_start(start), m_velocity(velocity) {}
+  Vec3 position(double t) const override { return m_start + t * m_velocity; }
+  Vec3 velocity(double) const override { return m_velocity; }
+  Vec3 acceleration(double) const override { return Vec3::Zero(); }
+
+ private:
+  Vec3 m_start, m_velocity;
+};
+
 /// Uniform random perturbation of every entry by at most `amplitude`.
 inline Eigen::VectorXd jitter(const Eigen::VectorXd& x, double amplitude, unsigned seed) {
   std::mt19937 rng(seed);

@@ -6,7 +6,6 @@
 
 #include <fstream>
 
-#include "experiments/run/run_files.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {
@@ -104,25 +103,6 @@ TEST(RunFolder, ClearingRemovesOnlyRunFiles) {
   EXPECT_TRUE(run_files_in(dir).empty());
   EXPECT_TRUE(fs::exists(dir / "notes.txt"));
   EXPECT_TRUE(fs::exists(dir / "run.json")) << "the experiment runner's own file stays";
-}
-
-TEST(RunFolder, JsonIsWrittenUnderATemporaryNameThenRenamed) {
-  const fs::path dir = fresh("atomic");
-  fs::create_directories(dir);
-  std::ofstream(dir / "summary.json") << "{\"status\": \"old\"}";
-  write_json(dir / "summary.json", {{"status", "ok"}});
-  EXPECT_FALSE(fs::exists(dir / "summary.json.tmp"));
-  std::ifstream in(dir / "summary.json");
-  EXPECT_EQ(nlohmann::json::parse(in)["status"], "ok");
-}
-
-TEST(RunFolder, JsonWithBytesThatAreNotUtf8IsWrittenWithReplacementCharacters) {
-  // A path from the command line may hold any bytes but 0 and '/'.
-  const fs::path dir = fresh("not_utf8");
-  fs::create_directories(dir);
-  write_json(dir / "summary.json", {{"scene", "e\xff/s.json"}});
-  std::ifstream in(dir / "summary.json");
-  EXPECT_EQ(nlohmann::json::parse(in)["scene"], "e\xef\xbf\xbd/s.json");  // U+FFFD
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 #pragma once
-// Fixtures of the experiment tests (test_experiment_plan.cpp, test_experiment_run.cpp): a
+// Fixtures of the experiment tests (test_run_plan.cpp, test_experiment_runner.cpp): a
 // temporary folder, a small scene, a small definition and readers.
 #include <gtest/gtest.h>
 

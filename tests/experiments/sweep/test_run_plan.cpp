@@ -1,5 +1,5 @@
 // Experiment plans: sweeps, cases, run ids, ensembles, references and shards
-// (docs/experiments.md; a definition file's errors: test_experiment_file.cpp).
+// (docs/experiments.md; a definition file's errors: test_experiment.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
