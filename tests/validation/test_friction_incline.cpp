@@ -1,8 +1,9 @@
 // Coulomb friction on a sphere's slope (docs/model.md section 4.12): a particle resting on the
 // `smooth` model's sphere where the surface is inclined by theta to the horizontal sticks when
-// tan(theta) < mu (it moves less than epsilon_v times the time: the mollified friction lets a
-// stuck particle creep below epsilon_v at most) and slides when tan(theta) > mu with Coulomb's
-// closed-form acceleration g (sin theta - mu cos theta), for every integrator that has friction:
+// tan(theta) < mu (it moves less than epsilon_v times the time; with the lagged potential it
+// creeps at the closed-form speed where the mollified friction balances the slope) and slides
+// when tan(theta) > mu with Coulomb's closed-form acceleration g (sin theta - mu cos theta)
+// (measured within 0.13 % to 0.92 %), for every integrator that has friction:
 // the velocity-level form (leap-frog, symplectic Euler), the position-based form (xpbd) and
 // IPC's lagged potential (converged implicit Euler, vbd).
 #include <gtest/gtest.h>
@@ -80,8 +81,20 @@ TEST(FrictionIncline, StickingBelowTheFrictionAngle) {
     Incline incline(polar, mu);
     ASSERT_LT(incline.sin_theta / incline.cos_theta, mu);
     const double duration = 1.0;
-    EXPECT_LT(incline.displacement(options, duration).norm(), epsilon_v * duration)
-        << options.dump();
+    const double moved = incline.displacement(options, duration).norm();
+    EXPECT_LT(moved, epsilon_v * duration) << options.dump();
+    // The lagged potential holds the slope's pull m g sin(theta) = mu lambda f1 at the creep
+    // speed where f1 = r (2 - r) = tan(theta) / mu, r = speed / epsilon_v (measured 4.737e-4 m;
+    // the velocity-level and position-based forms stop the particle: 1e-7 m, its normal
+    // settling).
+    const std::string name = options["name"];
+    if (name == "implicit-euler" || name == "vbd") {
+      const double creep =
+          epsilon_v * (1.0 - std::sqrt(1.0 - incline.sin_theta / incline.cos_theta / mu));
+      EXPECT_NEAR(moved, creep * duration, 0.01 * creep * duration) << name;
+    } else {
+      EXPECT_LT(moved, 1e-3 * epsilon_v * duration) << name;
+    }
   }
 }
 
