@@ -27,6 +27,8 @@ struct CollisionParams {
   double threshold = 0.01;    ///< delta: distance below which the repulsion acts [m]
   double stiffness = 1000.0;  ///< k_collision [N/m]
   CollisionModel model = CollisionModel::particle;
+  double friction = 0.0;            ///< mu: Coulomb coefficient against the object (section 4.12)
+  double friction_epsilon = 1e-3;   ///< epsilon_v: the friction mollifier's width [m/s]
 };
 
 /// Nearest object particle within the collision threshold, per cloth particle, with cached

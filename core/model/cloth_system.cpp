@@ -12,6 +12,7 @@ ClothSystem::ClothSystem(Cloth cloth, std::shared_ptr<const Dummy> dummy, ForceP
     : m_cloth(std::move(cloth)),
       m_dummy(std::move(dummy)),
       m_collision(m_dummy, params.collision, m_cloth.size()),
+      m_friction(params.collision.friction, params.collision.friction_epsilon),
       m_spring_forces(m_cloth),
       m_params(params),
       m_constraints(m_cloth.size()) {}
@@ -40,6 +41,7 @@ void ClothSystem::evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceS
   const double m = particle_mass();
   const Vec3 weight = m * m_params.gravity;
   const bool with_collision = m_dummy && split.with_collision;
+  const bool with_friction = with_collision && m_friction.frozen();
   std::optional<ConstComponents> springs;
   if (with_springs) springs.emplace(m_spring_forces.evaluate(x, v, m_cloth.params.damping_spring));
 
@@ -50,6 +52,7 @@ void ClothSystem::evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceS
     if (springs) total = Vec3((*springs)(i, 0), (*springs)(i, 1), (*springs)(i, 2));
     if (with_body) total += weight - c_air * particle(v, i);
     if (with_collision) total += m_collision.force(i, particle(x, i));
+    if (with_friction) total += m_friction.force(i, particle(x, i));
     if constexpr (per_mass) total /= m;
     particle(f, i) = total;
   }
@@ -80,6 +83,24 @@ void ClothSystem::rhs(double t, ConstVecRef y, VecRef y_dot, ForceSplit split) c
   m_constraints.apply_to_rhs(t, x_dot, v_dot);
 }
 
+void ClothSystem::freeze_friction(ConstVecRef x, double h) {
+  if (m_dummy && m_friction.coefficient() > 0.0) m_friction.freeze(m_collision, x, h);
+}
+
+void ClothSystem::apply_velocity_friction(ConstVecRef x, VecRef v, double dt) const {
+  const double mu = m_friction.coefficient();
+  if (!m_dummy || mu == 0.0) return;
+  const auto& fixed = m_constraints.mask();
+  const double per_mass = dt / particle_mass();
+  for (int i = 0; i < num_particles(); ++i) {
+    if (fixed[static_cast<std::size_t>(i)]) continue;
+    const Vec3 f = m_collision.force(i, particle(x, i));
+    const double magnitude = f.norm();
+    if (!(magnitude > 0.0)) continue;
+    particle(v, i) = coulomb_velocity_friction(particle(v, i), f / magnitude, per_mass * magnitude, mu);
+  }
+}
+
 int ClothSystem::project(double t, VecRef x, VecRef v) const {
   int corrected = 0;
   if (m_dummy) {
@@ -108,6 +129,8 @@ EnergyBreakdown ClothSystem::energy(ConstVecRef x, ConstVecRef v) const {
   for (int i = 0; i < num_particles(); ++i) e.gravity -= m * m_params.gravity.dot(particle(x, i));
   for (int i = 0; m_dummy && i < num_particles(); ++i)
     e.collision += m_collision.energy(i, particle(x, i));
+  for (int i = 0; m_friction.frozen() && i < num_particles(); ++i)
+    e.friction += m_friction.energy(i, particle(x, i));
   return e;
 }
 
@@ -134,10 +157,14 @@ void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool def
   if (!split.with_collision && !split.with_body) return;
   const Mat3 air = split.with_body ? Mat3(-m_cloth.params.damping_air * Mat3::Identity())
                                    : Mat3::Zero();
-  for (int i = 0; i < num_particles(); ++i)
-    visit(i, -1,
-          split.with_collision ? m_collision.jacobian(i, particle(x, i), definite) : Mat3::Zero(),
-          air);
+  const bool with_friction = split.with_collision && m_friction.frozen();
+  for (int i = 0; i < num_particles(); ++i) {
+    Mat3 contact = Mat3::Zero();
+    if (split.with_collision) contact = m_collision.jacobian(i, particle(x, i), definite);
+    // The friction Hessian is positive semi-definite (friction.hpp): definite either way.
+    if (with_friction) contact -= m_friction.hessian(i, particle(x, i));
+    visit(i, -1, contact, air);
+  }
 }
 
 void ClothSystem::force_jacobian_times(ConstVecRef x, ConstVecRef v,

@@ -8,6 +8,7 @@
 
 #include "core/model/cloth.hpp"
 #include "core/collision/collision.hpp"
+#include "core/collision/friction.hpp"
 #include "core/model/constraints.hpp"
 #include "core/dummy/dummy.hpp"
 #include "core/forces/grid_spring_forces.hpp"
@@ -26,6 +27,9 @@ struct EnergyBreakdown {
   double spring = 0.0;
   double gravity = 0.0;
   double collision = 0.0;
+  /// The lagged friction potential D of a frozen step (section 4.12; 0 otherwise): a
+  /// dissipation potential, not stored energy, hence not in the total.
+  double friction = 0.0;
   double total() const { return kinetic + spring + gravity + collision; }
 };
 
@@ -76,6 +80,18 @@ class ClothSystem {
   /// The collision term, whose contact pairing the implicit integrators set (Collision).
   Collision& collision() { return m_collision; }
   const Collision& collision() const { return m_collision; }
+  /// The lagged friction potential (docs/model.md section 4.12), frozen by freeze_friction.
+  const LaggedFriction& friction() const { return m_friction; }
+
+  /// Freezes the lagged friction of a step of size h from positions x (3N): until
+  /// release_friction(), forces(), the Jacobians and energy().friction include it as part of the
+  /// collision term. A no-op with collision.friction = 0 or no object.
+  void freeze_friction(ConstVecRef x, double h);
+  void release_friction() { m_friction.release(); }
+  /// Velocity-level Coulomb friction (section 4.12) after a velocity change of duration dt that
+  /// included the collision force at x: each free particle's tangential velocity shrinks by
+  /// mu dt |F_collision(x)| / m, down to 0. A no-op with collision.friction = 0.
+  void apply_velocity_friction(ConstVecRef x, VecRef v, double dt) const;
 
   /// The grid at rest, at zero velocity, projected onto the constraints at time t.
   Eigen::VectorXd initial_state(double t) const;
@@ -129,6 +145,7 @@ class ClothSystem {
   Cloth m_cloth;
   std::shared_ptr<const Dummy> m_dummy;
   Collision m_collision;
+  LaggedFriction m_friction;
   // Scratch of the spring loop: mutable so that force evaluation stays a const query (a system
   // is never shared between threads).
   mutable GridSpringForces m_spring_forces;

@@ -156,6 +156,12 @@ CollisionParams read_collision(JsonReader in) {
   else if (model != "particle")
     throw in.error("model",
                    "unknown collision model '" + model + "' (known: particle, surface, smooth)");
+  c.friction = in.non_negative("friction", in.number("friction", c.friction));
+  in.at_most("friction", c.friction, limits::max_friction);
+  c.friction_epsilon = in.positive("friction_epsilon",
+                                   in.number("friction_epsilon", c.friction_epsilon));
+  in.at_least("friction_epsilon", c.friction_epsilon, limits::min_friction_epsilon);
+  in.at_most("friction_epsilon", c.friction_epsilon, limits::max_friction_epsilon);
   in.finish();
   return c;
 }

@@ -36,6 +36,14 @@ constexpr double max_stiffness = 1e12;
 /// 10^24 /s^2 and /s (a mass of 1e-300 with k = 1e12 gave an infinite frequency).
 constexpr double max_mass = 1e6;
 constexpr double min_mass = 1e-12;
+/// collision.friction: Coulomb coefficients of real fabrics on a dress form are below 1; 10 is
+/// far beyond any and keeps mu lambda finite.
+constexpr double max_friction = 10.0;
+/// collision.friction_epsilon [m/s]: the mollifier's width 1 / epsilon_v h enters the friction
+/// Hessian, so a micrometre per second bounds it (2 / (1e-9 * 1e-6) stays far from overflow);
+/// beyond 100 m/s no draping motion reaches Coulomb's bound.
+constexpr double min_friction_epsilon = 1e-9;
+constexpr double max_friction_epsilon = 100.0;
 /// Length of the gravity vector [m/s^2].
 constexpr double max_gravity = 1e3;
 /// Simulated time [s].

@@ -17,16 +17,18 @@ double Leapfrog::step(double t_stop) {
     m_system.acceleration(m_t, x, v, a);
     ++m_counters.rhs_evals;
   }
-  // Kick to v(n+1/2) and drift to x(n+1) in one pass over the state.
+  // Each kick carries the collision force of its end of the step, so each is followed by the
+  // Coulomb bound on that contact's tangential change (docs/model.md section 4.12): a particle
+  // that sticks then drifts nowhere.
   const double half_h = 0.5 * h;
-  for (Eigen::Index k = 0; k < x.size(); ++k) {
-    v[k] += half_h * a[k];
-    x[k] += h * v[k];
-  }
+  v += half_h * a;
+  m_system.apply_velocity_friction(x, v, half_h);
+  x += h * v;
   m_system.project(t_next, x, v);
   m_system.acceleration(t_next, x, v, a);
   ++m_counters.rhs_evals;
   v += half_h * a;  // v(n+1), synchronised; the next kick continues from here
+  m_system.apply_velocity_friction(x, v, half_h);
   m_system.constraints().project(t_next, x, v);
   m_have_acceleration = true;
   return accept_fixed_step(t_next);

@@ -15,6 +15,7 @@ double SymplecticEuler::step(double t_stop) {
   m_system.acceleration(m_t, x, v, a);
   ++m_counters.rhs_evals;
   v += h * a;
+  m_system.apply_velocity_friction(x, v, h);  // docs/model.md section 4.12
   x += h * v;
   m_system.project(t_next, x, v);
   return accept_fixed_step(t_next);

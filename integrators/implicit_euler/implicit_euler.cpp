@@ -24,7 +24,9 @@ double ImplicitEuler::step(double t_stop) {
     --m_counters.attempts;
   } else {
     // One Newton step of y_{n+1} = y_n + h f(y_{n+1}) from y_n: Baraff and Witkin's system.
+    m_system.freeze_friction(positions(), t_next - m_t);
     m_linearised.take(m_t, t_next - m_t, t_next - m_t, nullptr, m_y, m_counters);
+    m_system.release_friction();
     m_system.project(t_next, positions(), velocities());
   }
   return accept_fixed_step(t_next);
@@ -63,9 +65,13 @@ void ImplicitEuler::converged_step(double t_start, double t_next) {
   m_weights = 1.0 / (m_options.rtol * m_y.array().abs() + m_options.atol);
   m_increment = m_y;  // the stage's guess: the step's start
   const long cg_before = m_solver.iterations();
+  // IPC's lagged friction (docs/model.md section 4.12): normal forces and tangents of the step's
+  // start, so that the stage stays the minimum of one potential.
+  m_system.freeze_friction(positions(), t_next - t_start);
   const StageSolve result =
       m_line_search->solve(t_next, t_next - t_start, m_y, m_increment,
                            StageTolerance{m_weights, tolerance, max_newton_iters_of(m_options)});
+  m_system.release_friction();
   m_counters.linear_iters += m_solver.iterations() - cg_before + result.krylov_iterations;
   m_counters.newton_iters += result.iterations;
   m_counters.rhs_evals += result.rhs_evals;

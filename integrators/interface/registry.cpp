@@ -72,11 +72,15 @@ std::vector<IntegratorDeclaration> built_in_declarations() {
       {"leapfrog", "explicit", 2, false, "the paper's leap-frog (kick-drift-kick form)", {},
        [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
          return std::make_unique<Leapfrog>(system, options.dt);
-       }},
+       },
+       {},
+       true},
       {"symplectic-euler", "explicit", 1, false, "semi-implicit Euler, velocity first", {},
        [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
          return std::make_unique<SymplecticEuler>(system, options.dt);
-       }},
+       },
+       {},
+       true},
       {"implicit-euler", "implicit", 1, false,
        "Baraff-Witkin linearised backward Euler, CG or sparse LDLT on the 3N velocity system",
        {},
@@ -88,7 +92,8 @@ std::vector<IntegratorDeclaration> built_in_declarations() {
        // implicit-euler's large steps (90 -> 9 CG iterations at 1/30 s); ARKODE's adaptive steps
        // there are microseconds, S is then close to M, and block Jacobi is cheaper. 1e-3:
        // integrator_options.hpp, default_linear_tolerance.
-       {false, false, true, true, false, "pcg-multigrid", 1e-3}},
+       {false, false, true, true, false, "pcg-multigrid", 1e-3},
+       true},
   };
   for (const ArkodeIntegrator& a : arkode_integrators)
     all.push_back(

@@ -83,8 +83,8 @@ double IncrementalPotential::value(ConstVecRef z, double& magnitude) const {
   }
   // Air damping on fixed particles is no function of the unknowns: left out like their inertia.
   if (m_split.with_collision) {
-    e += u.collision;
-    magnitude += u.collision;
+    e += u.collision + u.friction;
+    magnitude += u.collision + u.friction;
   }
   if (m_split.with_body) {
     const double dissipation = m_gamma * 0.5 * m_system.cloth().params.damping_air * air;

@@ -7,7 +7,8 @@
 // ARKODE's correction form a = zpred + sdata). With z = [x; v] and f_I = [v; M^-1 F] on the
 // free particles, x = a_x + gamma v eliminates the positions and the stage is g(v) = 0 with
 //     g(v) = M (v - a_v) - gamma F(a_x + gamma v, v).
-// F = -grad U(x) - grad_v R(v) for the elastic, collision and gravity energy U and the Rayleigh
+// F = -grad U(x) - grad_v R(v) for the elastic, collision and gravity energy U (and the lagged
+// friction potential of docs/model.md section 4.12 while the system holds one frozen) and the Rayleigh
 // dissipation R of air damping (c_air |v|^2 / 2) and spring damping (c ((v_j - v_i) . u)^2 / 2).
 // The spring direction u turns with x, so R is frozen at the iterate x_k: then
 //     E_k(v) = 1/2 (v - a_v)^T M (v - a_v) + U(a_x + gamma v) + gamma R_k(v)

@@ -90,6 +90,8 @@ double Vbd::step(double t_stop) {
   m_x_n = x;
   m_v_n = v;
   m_descent.begin_step(h, m_x_n, m_v_n);
+  // IPC's lagged friction of the step (docs/model.md section 4.12), part of G's contact term.
+  m_system.freeze_friction(m_x_n, h);
   start_positions(h, t_next, x);
   if (m_chebyshev) m_old = x;  // x^(0); x^(-1) is never read
   double omega = 1.0;
@@ -101,6 +103,7 @@ double Vbd::step(double t_stop) {
   m_counters.newton_iters += m_iterations;
   m_counters.rhs_evals += m_iterations;
   m_counters.jacobian_setups += m_iterations;
+  m_system.release_friction();
   v = (x - m_x_n) / h;
   m_system.project(t_next, x, v);
   m_previous_velocity = m_v_n;
@@ -126,7 +129,9 @@ IntegratorDeclaration vbd_declaration() {
                           "Chebyshev's estimate of the sweeps' spectral radius", true, true)},
       [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
         return std::make_unique<Vbd>(system, options);
-      }};
+      },
+      {},
+      true};
 }
 
 }  // namespace drape

@@ -85,6 +85,11 @@ VertexBlock VertexBlockPotential::block(int i, const double* x, bool definite) c
   const Collision& collision = m_system.collision();
   b.force += collision.force(i, xi);
   b.hessian -= collision.jacobian(i, xi, definite);
+  const LaggedFriction& friction = m_system.friction();
+  if (friction.frozen()) {
+    b.force += friction.force(i, xi);
+    b.hessian += friction.hessian(i, xi);  // positive semi-definite as it stands
+  }
   return b;
 }
 
@@ -119,7 +124,12 @@ double VertexBlockPotential::energy_change(int i, const double* x, const Vec3& d
     add(0.5 * m_h * m_c_spring * rate_change * (2.0 * rate + rate_change));
   }
   const Collision& collision = m_system.collision();
-  const double contact = collision.energy(i, moved), before = collision.energy(i, xi);
+  double contact = collision.energy(i, moved), before = collision.energy(i, xi);
+  const LaggedFriction& friction = m_system.friction();
+  if (friction.frozen()) {
+    contact += friction.energy(i, moved);
+    before += friction.energy(i, xi);
+  }
   magnitude += contact + before;
   return change + (contact - before);
 }
@@ -127,12 +137,14 @@ double VertexBlockPotential::energy_change(int i, const double* x, const Vec3& d
 double VertexBlockPotential::value(ConstVecRef x) const {
   const auto& fixed = m_system.constraints().mask();
   const Collision& collision = m_system.collision();
+  const LaggedFriction& friction = m_system.friction();
   double g = 0.0;
   for (int i = 0; i < m_system.num_particles(); ++i) {
     if (fixed[static_cast<std::size_t>(i)]) continue;
     const Vec3 xi = particle(x, i);
     g += m_mass / (2.0 * m_h * m_h) * (xi - particle(m_y, i)).squaredNorm() - m_weight.dot(xi) +
          m_c_air / (2.0 * m_h) * (xi - particle(m_x_n, i)).squaredNorm() + collision.energy(i, xi);
+    if (friction.frozen()) g += friction.energy(i, xi);
   }
   const SpringSet& springs = m_system.cloth().springs;
   for (Eigen::Index e = 0; e < springs.size(); ++e) {

@@ -3,7 +3,8 @@
 // Descent (Chen, Liu, Yang and Yuksel 2024, "Vertex Block Descent", ACM TOG 43(4), sections
 // 3.1-3.3). With y = x_n + h v_n and v = (x - x_n) / h,
 //     G(x) = 1/(2 h^2) |x - y|_M^2 + U(x) + h R_u(v),
-// U the spring, gravity and collision energy and R_u the Rayleigh dissipation of air damping
+// U the spring, gravity and collision energy (with the lagged friction potential of docs/model.md
+// section 4.12 while the system holds one frozen) and R_u the Rayleigh dissipation of air damping
 // (c_air |v|^2 / 2) and spring damping (c_s ((v_j - v_i) . u)^2 / 2) with the springs'
 // directions u frozen (freeze_directions). It is the IncrementalPotential of converged backward
 // Euler (integrators/newton/incremental_potential.hpp) written in x instead of v: E_k(v) =

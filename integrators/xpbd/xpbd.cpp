@@ -3,6 +3,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/collision/friction.hpp"
 #include "core/forces/forces.hpp"
 #include "integrators/colouring/graph_colouring.hpp"
 #include "integrators/xpbd/xpbd_constraints.hpp"
@@ -112,7 +113,24 @@ void Xpbd::substep(double t_sub, double h) {
   const double inv_h = 1.0 / h, inv_h2 = inv_h * inv_h;
   for (int k = 0; k < m_iterations; ++k)
     m_jacobi ? sweep_jacobi(inv_h2, inv_h) : sweep_gauss_seidel(inv_h2, inv_h);
+  apply_friction();
   v = (x - m_previous) * inv_h;
+}
+
+void Xpbd::apply_friction() {
+  const Collision& collision = m_system.collision();
+  const double mu = collision.params().friction;
+  if (mu == 0.0 || !m_system.dummy()) return;
+  VecMap x = positions();
+  for (const int i : m_free) {
+    ContactConstraint c;
+    if (m_contact_lambda[i] == 0.0 || !contact_constraint(collision, i, particle(x, i), c)) continue;
+    const double length = c.gradient.norm();
+    const double normal_move = m_inverse_mass[i] * std::abs(m_contact_lambda[i]) * length;
+    const Vec3 previous = particle(m_previous, i);
+    particle(x, i) = previous + coulomb_velocity_friction(particle(x, i) - previous,
+                                                          c.gradient / length, normal_move, mu);
+  }
 }
 
 bool Xpbd::spring_increment(Eigen::Index e, const double* x, double weight, double inv_h2,
@@ -200,7 +218,9 @@ IntegratorDeclaration xpbd_declaration() {
                               "every constraint from one iterate, relaxed")},
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<Xpbd>(system, options);
-          }};
+          },
+          {},
+          true};
 }
 
 }  // namespace drape

@@ -15,7 +15,7 @@ namespace drape {
 /// multipliers lambda started at 0, and sets v = (x - x_prev) / h. Springs are the distance
 /// constraints C = |x_j - x_i| - L0 with compliance 1/k and XPBD's damping beta = c_s (the
 /// model's spring damping exactly); contacts are C = sqrt(2 U_i / k_c) with compliance 1/k_c
-/// (xpbd_constraints.hpp). After the step, the model's projection (docs/model.md section 5).
+/// (xpbd_constraints.hpp), with position-based Coulomb friction (apply_friction). After the step, the model's projection (docs/model.md section 5).
 /// Sweeps: `gauss-seidel` over the springs in their colour order (colour_springs), then the
 /// contacts; `jacobi` every constraint from one iterate with mass splitting (a particle of n
 /// constraints has inverse mass n w in each). Converged, a substep is backward Euler of
@@ -43,6 +43,10 @@ class Xpbd final : public Integrator {
   /// booked, moves added to `target` (x itself for Gauss-Seidel), with the weights given.
   void sweep(const double* x, double* target, const Eigen::ArrayXd& spring_weight,
              const Eigen::ArrayXd& contact_weight, double inv_h2, double inv_h);
+  /// Position-based Coulomb friction after a substep's sweeps (Macklin et al. 2014, section
+  /// 6.1; docs/model.md section 4.12): each contact's tangential displacement over the substep
+  /// shrinks by mu times its normal correction w |lambda| |grad C|, down to 0.
+  void apply_friction();
   void sweep_gauss_seidel(double inv_h2, double inv_h);
   void sweep_jacobi(double inv_h2, double inv_h);
 

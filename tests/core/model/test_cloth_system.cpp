@@ -1,6 +1,8 @@
 // The assembled model: forces against energy, Jacobians against forces, constraints, momentum.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include "core/model/cloth_system.hpp"
 #include "core/dummy/dummy_sources.hpp"
 #include "tests/support/test_support.hpp"
@@ -171,6 +173,62 @@ TEST(ClothSystem, ImplicitAndExplicitPartsAddUpToAll) {
   s.forces(x, v, springs_and_collision, ForceSplit::springs_and_collision);
   EXPECT_GT(collision_force.norm(), 0.0);
   EXPECT_LT((springs_and_collision - springs - collision_force).norm(), 1e-12 * collision_force.norm());
+}
+
+// docs/model.md section 4.12: while frozen, the lagged friction is part of the collision term:
+// the forces gain -grad D (D = energy().friction, by central differences), the definite
+// Jacobian -Hess D (against force differences), and released, everything is as before. The
+// velocity-level pass cuts each contact's tangential velocity by mu dt |F_c| / m.
+TEST(ClothSystem, FrozenFrictionIsInTheForcesEnergyAndJacobianAndReleasedIsGone) {
+  ClothParams p = testing::small_cloth(3, 3);
+  ForceParams params;
+  params.collision = CollisionParams{0.01, 1000.0, CollisionModel::smooth, 0.4, 1e-3};
+  const auto sphere = std::make_shared<const Dummy>(make_dummy(
+      nlohmann::json{{"builtin", "sphere"}, {"radius", 0.05}, {"center", {0.02, 0.97, 0.055}}},
+      "test", "dummy", "."));
+  ClothSystem s(build_cloth(p), sphere, params);
+  const Eigen::Index n3 = 3 * s.num_particles();
+  const Eigen::VectorXd x0 = s.cloth().rest_positions;  // within delta of the sphere
+  const Eigen::VectorXd v = Eigen::VectorXd::Zero(n3);
+  const Eigen::VectorXd before = forces_of(s, x0, v);
+  const double h = 0.01;
+  s.freeze_friction(x0, h);
+  // Moved within and beyond the sticking zone (eps = 1e-5 m).
+  const Eigen::VectorXd x = jitter(x0, 2e-5, 3);
+  const Eigen::VectorXd f = forces_of(s, x, v);
+  s.release_friction();
+  const Eigen::VectorXd friction_force = f - forces_of(s, x, v);
+  ASSERT_GT(friction_force.norm(), 0.0);
+  s.freeze_friction(x0, h);
+  const auto dissipation = [&](const Eigen::VectorXd& at) {
+    return s.energy(at, v).friction;
+  };
+  const Eigen::VectorXd gradient = testing::fd_gradient(dissipation, x, 1e-9);
+  EXPECT_LT((friction_force + gradient).norm(), 1e-6 * friction_force.norm());
+  const Eigen::VectorXd dx = jitter(Eigen::VectorXd::Zero(n3), 1.0, 4);
+  Eigen::VectorXd product(n3);
+  s.force_jacobian_times(x, v, dx, Eigen::VectorXd::Zero(n3), product, false);
+  const double d = 1e-10;
+  const Eigen::VectorXd difference = (forces_of(s, x + d * dx, v) - forces_of(s, x - d * dx, v)) / (2 * d);
+  EXPECT_LT((product - difference).norm(), 1e-5 * difference.norm());
+  s.release_friction();
+  EXPECT_EQ(forces_of(s, x0, v), before);
+  EXPECT_EQ(s.energy(x, v).friction, 0.0);
+
+  // Velocity level: a particle in contact, moving tangentially at 0.5 m/s, over dt = 1 ms.
+  int i = 0;
+  Vec3 contact = Vec3::Zero();
+  for (; i < s.num_particles() && contact.isZero(); ++i) contact = s.collision().force(i, particle(x0, i));
+  --i;
+  ASSERT_GT(contact.norm(), 0.0);
+  const Vec3 normal = contact.normalized();
+  const Vec3 tangent = normal.cross(Vec3::UnitX()).normalized();
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(n3);
+  particle(w, i) = 0.5 * tangent - 0.1 * normal;
+  s.apply_velocity_friction(x0, w, 1e-3);
+  const double cut = 0.4 * 1e-3 * contact.norm() / p.particle_mass;
+  EXPECT_NEAR(particle(w, i).dot(tangent), 0.5 - cut, 1e-12);
+  EXPECT_NEAR(particle(w, i).dot(normal), -0.1, 1e-12);
 }
 
 }  // namespace

@@ -51,6 +51,27 @@ TEST(Scene, UnknownKeysAreErrors) {
             "scene.json: collision.modell: unknown key");
 }
 
+// docs/model.md section 4.12: mu in [0, 10] (default 0: no friction), epsilon_v in [1e-9, 100] m/s.
+TEST(Scene, FrictionKeysAreReadAndCheckedAgainstTheirRanges) {
+  const Scene defaults = parse_scene(valid_scene(), "scene.json", ".");
+  EXPECT_EQ(defaults.forces.collision.friction, 0.0);
+  EXPECT_EQ(defaults.forces.collision.friction_epsilon, 1e-3);
+  const Scene set = parse_scene(with("collision.friction=0.5", "collision.friction_epsilon=0.01"),
+                                "scene.json", ".");
+  EXPECT_EQ(set.forces.collision.friction, 0.5);
+  EXPECT_EQ(set.forces.collision.friction_epsilon, 0.01);
+  EXPECT_EQ(error_for(with("collision.friction=-0.1")),
+            "scene.json: collision.friction: must not be negative, got -0.1");
+  EXPECT_EQ(error_for(with("collision.friction=11")),
+            "scene.json: collision.friction: must be at most 10.0, got 11.0");
+  EXPECT_EQ(error_for(with("collision.friction_epsilon=0")),
+            "scene.json: collision.friction_epsilon: must be positive, got 0.0");
+  EXPECT_EQ(error_for(with("collision.friction_epsilon=1e-12")),
+            "scene.json: collision.friction_epsilon: must be at least 1e-09, got 1e-12");
+  EXPECT_EQ(error_for(with("collision.friction_epsilon=1000")),
+            "scene.json: collision.friction_epsilon: must be at most 100.0, got 1000.0");
+}
+
 TEST(Scene, MissingRequiredFieldsAreNamed) {
   nlohmann::json scene = valid_scene();
   scene["cloth"].erase("spacing");

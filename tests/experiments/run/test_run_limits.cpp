@@ -88,6 +88,24 @@ TEST(RunLimits, AFixedStepLongerThanTheRunIsAnInputError) {
   EXPECT_EQ(error_for(R"({"name": "arkode-erk", "adaptive": true, "dt": 1.0})", 0.1), "no error");
 }
 
+// docs/model.md section 4.12: an integrator with no friction form would run the scene
+// frictionless; it is refused, naming the field and the integrators that have one.
+TEST(RunLimits, FrictionWithAnIntegratorWithoutItIsAnInputError) {
+  Scene scene = scene_with(R"({"name": "arkode-erk", "dt": 0.01})", 0.1);
+  const auto error = [&] {
+    return testing::input_error_message([&] {
+      check_run_limits(scene, read_integrator_options(scene.integrator, scene.file, "integrator"));
+    });
+  };
+  EXPECT_EQ(error(), "no error");
+  scene.forces.collision.friction = 0.3;
+  EXPECT_EQ(error(),
+            "scene.json: collision.friction: integrator arkode-erk has no friction (docs/model.md "
+            "section 4.12); these have: leapfrog, symplectic-euler, implicit-euler, xpbd, vbd");
+  scene.integrator["name"] = "vbd";
+  EXPECT_EQ(error(), "no error");
+}
+
 TEST(RunLimits, SceneSimulationChecksBeforeBuilding) {
   const Scene scene = scene_with(R"({"name": "leapfrog", "dt": 1e-12})", 10.0);
   EXPECT_EQ(testing::input_error_message([&] { SceneSimulation run(scene); }),
