@@ -1,5 +1,7 @@
 #include "integrators/explicit/leapfrog.hpp"
 
+#include "integrators/explicit/kick_drift.hpp"
+
 namespace drape {
 
 void Leapfrog::reset(double t, const Eigen::VectorXd& y) {
@@ -19,14 +21,11 @@ double Leapfrog::step(double t_stop) {
   }
   // Kick to v(n+1/2) and drift to x(n+1) in one pass over the state.
   const double half_h = 0.5 * h;
-  for (Eigen::Index k = 0; k < x.size(); ++k) {
-    v[k] += half_h * a[k];
-    x[k] += h * v[k];
-  }
+  kick_drift(x, v, a, half_h, h);
   m_system.project(t_next, x, v);
   m_system.acceleration(t_next, x, v, a);
   ++m_counters.rhs_evals;
-  v += half_h * a;  // v(n+1), synchronised; the next kick continues from here
+  kick(v, a, half_h);  // v(n+1), synchronised; the next kick continues from here
   m_system.constraints().project(t_next, x, v);
   m_have_acceleration = true;
   return accept_fixed_step(t_next);

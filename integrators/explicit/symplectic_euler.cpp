@@ -1,5 +1,7 @@
 #include "integrators/explicit/symplectic_euler.hpp"
 
+#include "integrators/explicit/kick_drift.hpp"
+
 namespace drape {
 
 void SymplecticEuler::reset(double t, const Eigen::VectorXd& y) {
@@ -14,8 +16,7 @@ double SymplecticEuler::step(double t_stop) {
   VecMap a(m_acceleration.data(), m_acceleration.size());
   m_system.acceleration(m_t, x, v, a);
   ++m_counters.rhs_evals;
-  v += h * a;
-  x += h * v;
+  kick_drift(x, v, a, h, h);
   m_system.project(t_next, x, v);
   return accept_fixed_step(t_next);
 }

@@ -1,0 +1,26 @@
+#pragma once
+// The explicit steps' update of the state, element by element, on the hot loops' threads
+// (core/parallel): each element's value is the same whatever the split.
+#include "core/model/state.hpp"
+#include "core/parallel/parallel_for.hpp"
+
+namespace drape {
+
+/// v += h_kick a, then x += h_drift v (the new v), particle by particle.
+inline void kick_drift(VecRef x, VecRef v, ConstVecRef a, double h_kick, double h_drift) {
+  parallel_for(x.size() / 3, threaded_particles_from, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+    for (Eigen::Index k = 3 * begin; k < 3 * end; ++k) {
+      v[k] += h_kick * a[k];
+      x[k] += h_drift * v[k];
+    }
+  });
+}
+
+/// v += h_kick a, particle by particle.
+inline void kick(VecRef v, ConstVecRef a, double h_kick) {
+  parallel_for(v.size() / 3, threaded_particles_from, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+    v.segment(3 * begin, 3 * (end - begin)) += h_kick * a.segment(3 * begin, 3 * (end - begin));
+  });
+}
+
+}  // namespace drape
