@@ -10,7 +10,8 @@ packages=(cmake g++ make libeigen3-dev libsundials-dev nlohmann-json3-dev libgte
           chromium-driver python3-selenium  # the live page's browser check (Selenium)
           python3-scipy  # MINPACK's fsolve for the independent DIRK reference (tests/validation)
           pybind11-dev python3-dev python3-pytest  # the Python module drapelab and its tests
-          clang libclang-rt-dev)  # the sanitize and fuzz presets: clang, its sanitizer and libFuzzer runtimes
+          clang libclang-rt-dev  # the sanitize and fuzz presets: clang, its sanitizer and libFuzzer runtimes
+          libomp-dev)  # clang's OpenMP runtime and Archer, for the tsan preset (docs/performance/threads.md)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

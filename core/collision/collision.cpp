@@ -1,6 +1,7 @@
 #include "core/collision/collision.hpp"
 
 #include <cmath>
+#include <vector>
 
 #include "core/collision/smooth_contact.hpp"
 #include "core/forces/forces.hpp"
@@ -18,14 +19,16 @@ ContactFinder::ContactFinder(std::shared_ptr<const Dummy> dummy, double threshol
       m_candidates(static_cast<std::size_t>(num_particles) * capacity) {}
 
 void ContactFinder::rebuild(int i, const Vec3& x) const {
+  // One list a thread: the force loop rebuilds lists of different particles at once.
+  thread_local std::vector<int> scratch;
   m_anchor.segment<3>(3 * i) = x;
-  m_dummy->particles_within(x, m_threshold + m_skin, m_scratch);
-  if (m_scratch.size() > static_cast<std::size_t>(capacity)) {
+  m_dummy->particles_within(x, m_threshold + m_skin, scratch);
+  if (scratch.size() > static_cast<std::size_t>(capacity)) {
     m_count[i] = overflowed;
     return;
   }
-  m_count[i] = static_cast<int>(m_scratch.size());
-  std::copy(m_scratch.begin(), m_scratch.end(),
+  m_count[i] = static_cast<int>(scratch.size());
+  std::copy(scratch.begin(), scratch.end(),
             m_candidates.begin() + static_cast<std::ptrdiff_t>(i) * capacity);
 }
 

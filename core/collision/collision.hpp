@@ -52,11 +52,12 @@ class ContactFinder {
   std::shared_ptr<const Dummy> m_dummy;
   double m_threshold;
   double m_skin;
-  // Caches, invisible in results: mutable so that force evaluation stays a const query.
+  // Caches, invisible in results: mutable so that force evaluation stays a const query. Each
+  // particle's entries are written only by the evaluation of that particle (the force loop's
+  // threads, core/parallel).
   mutable Eigen::VectorXd m_anchor;          // 3N
   mutable std::vector<int> m_count;          // N: list length, not_built or overflowed
   mutable std::vector<int> m_candidates;     // N * capacity object particle indices, ascending
-  mutable std::vector<int> m_scratch;
 };
 
 }  // namespace drape

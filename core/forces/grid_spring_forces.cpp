@@ -2,6 +2,7 @@
 
 #include "core/forces/forces.hpp"
 #include "core/forces/spring_kernel_impl.hpp"
+#include "core/parallel/parallel_for.hpp"
 
 namespace drape {
 
@@ -11,6 +12,11 @@ static_assert(kernel_degenerate_length == degenerate_length);
 
 void add_sse2(const Stencil& stencil, double c, const Arrays& arrays) {
   add_stencil<__m128d>(stencil, c, arrays);
+}
+
+void store_sse2(const Stencil& stencil, double c, const Arrays& arrays,
+                double* const spring_force[3], int row_begin, int row_end) {
+  store_stencil<__m128d>(stencil, c, arrays, spring_force, row_begin, row_end);
 }
 
 bool has_avx() {
@@ -62,21 +68,83 @@ Components StaggeredColumns::group(Eigen::Index k) {
 }
 
 GridSpringForces::GridSpringForces(const Cloth& cloth)
-    : m_columns(cloth.size(), 3),
+    : m_rows(cloth.params.rows),
+      m_cols(cloth.params.cols),
+      m_columns(cloth.size(), 3),
       m_row_force(cloth.params.cols, 3),
-      m_add(spring_kernel::has_avx() ? spring_kernel::add_avx : spring_kernel::add_sse2) {
+      m_spring_columns(0, 0),
+      m_add(spring_kernel::has_avx() ? spring_kernel::add_avx : spring_kernel::add_sse2),
+      m_store(spring_kernel::has_avx() ? spring_kernel::store_avx : spring_kernel::store_sse2) {
   for (const SpringStencil& s : cloth.stencils)
     m_stencils.push_back(kernel_stencil(s, cloth.params.rows, cloth.params.cols));
 }
 
 ConstComponents GridSpringForces::evaluate(ConstVecRef x, ConstVecRef v, double c) {
   Components xs = m_columns.group(0), vs = m_columns.group(1), force = m_columns.group(2);
+  const spring_kernel::Arrays arrays = kernel_arrays(xs, vs, force, m_row_force);
+  if (runs_threaded(static_cast<std::ptrdiff_t>(m_rows) * m_cols, threaded_particles_from)) {
+    parallel_for(m_rows, 0, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+      const Eigen::Index first = begin * m_cols, count = (end - begin) * m_cols;
+      to_components(x.segment(3 * first, 3 * count), xs.middleRows(first, count));
+      if (c != 0.0) to_components(v.segment(3 * first, 3 * count), vs.middleRows(first, count));
+    });
+    evaluate_threaded(c, arrays);
+    return force;
+  }
   to_components(x, xs);
   if (c != 0.0) to_components(v, vs);
   force.setZero();
-  const spring_kernel::Arrays arrays = kernel_arrays(xs, vs, force, m_row_force);
   for (const spring_kernel::Stencil& s : m_stencils) m_add(s, c, arrays);
   return force;
+}
+
+void GridSpringForces::evaluate_threaded(double c, const spring_kernel::Arrays& arrays) {
+  const auto stencils = static_cast<Eigen::Index>(m_stencils.size());
+  if (m_spring_columns.groups() != stencils)
+    m_spring_columns = StaggeredColumns(static_cast<Eigen::Index>(m_rows) * m_cols, stencils);
+  parallel_for(m_rows, 0, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+    for (Eigen::Index k = 0; k < stencils; ++k) {
+      Components out = m_spring_columns.group(k);
+      double* const columns[3] = {&out(0, 0), &out(0, 1), &out(0, 2)};
+      m_store(m_stencils[static_cast<std::size_t>(k)], c, arrays, columns,
+              static_cast<int>(begin), static_cast<int>(end));
+    }
+  });
+  parallel_for(m_rows, 0, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+    gather_rows(static_cast<int>(begin), static_cast<int>(end), arrays);
+  });
+}
+
+void GridSpringForces::gather_rows(int row_begin, int row_end, const spring_kernel::Arrays& a) {
+  for (int m = 0; m < 3; ++m) {
+    double* force = a.force[m];
+    const long begin = static_cast<long>(row_begin) * m_cols, end = static_cast<long>(row_end) * m_cols;
+    std::fill(force + begin, force + end, 0.0);
+    for (std::size_t k = 0; k < m_stencils.size(); ++k) {
+      const spring_kernel::Stencil& s = m_stencils[k];
+      const double* spring = &m_spring_columns.group(static_cast<Eigen::Index>(k))(0, m);
+      for (int r = row_begin; r < row_end; ++r) {
+        const long row = static_cast<long>(r) * s.cols;
+        const bool starts = r < s.rows;
+        const int from = r - (m_rows - s.rows);  // the row whose springs end in row r
+        const bool ends = from >= 0 && from < s.rows;
+        // Spring e of a row starts at row + first + e and ends offset further on.
+        const long i = row + s.first;
+        if (s.along_row) {
+          if (!starts) continue;
+          for (long e = 0; e < s.count; ++e) force[i + e] += spring[i + e];
+          for (long e = 0; e < s.count; ++e) force[i + s.offset + e] -= spring[i + e];
+          continue;
+        }
+        if (ends) {
+          const long source = static_cast<long>(from) * s.cols + s.first;
+          for (long e = 0; e < s.count; ++e) force[source + s.offset + e] -= spring[source + e];
+        }
+        if (starts)
+          for (long e = 0; e < s.count; ++e) force[i + e] += spring[i + e];
+      }
+    }
+  }
 }
 
 }  // namespace drape

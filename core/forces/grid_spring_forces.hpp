@@ -4,6 +4,7 @@
 // join two contiguous runs of particles, so the kernel (spring_kernel.hpp) streams through
 // contiguous memory in packed SIMD, square roots and divisions included, with no gather or
 // scatter of 3-vectors.
+#include <cstddef>
 #include <vector>
 
 #include "core/model/cloth.hpp"
@@ -33,6 +34,7 @@ class StaggeredColumns {
   StaggeredColumns(Eigen::Index rows, Eigen::Index groups);
   /// Group k: columns 3k, 3k + 1, 3k + 2.
   Components group(Eigen::Index k);
+  Eigen::Index groups() const { return m_buffer.cols() / 3; }
 
  private:
   Eigen::Index m_rows;
@@ -46,6 +48,12 @@ spring_kernel::Arrays kernel_arrays(ConstComponents x, ConstComponents v, Compon
                                     Components row_force);
 
 /// Spring forces of a grid cloth into an N x 3 array (column k: component k of every particle).
+///
+/// On one thread each spring adds its force to both particles, stencil by stencil and row by
+/// row. On several, each spring's force is first stored at its first particle, then every
+/// particle gathers its springs' forces in that very order (per stencil: a spring along a row
+/// adds before the one ending there subtracts; across rows the spring from the row above
+/// subtracts first), so the sums, and the bits, are the same for any number of threads.
 class GridSpringForces {
  public:
   explicit GridSpringForces(const Cloth& cloth);
@@ -55,10 +63,19 @@ class GridSpringForces {
   ConstComponents evaluate(ConstVecRef x, ConstVecRef v, double c);
 
  private:
+  using Store = void (*)(const spring_kernel::Stencil&, double, const spring_kernel::Arrays&,
+                         double* const[3], int, int);
+  void evaluate_threaded(double c, const spring_kernel::Arrays& arrays);
+  // Grid rows [row_begin, row_end) of `force`: each particle's springs from m_spring_columns.
+  void gather_rows(int row_begin, int row_end, const spring_kernel::Arrays& arrays);
+
+  int m_rows, m_cols;
   std::vector<spring_kernel::Stencil> m_stencils;
   StaggeredColumns m_columns;   // x, v, force
   Eigen::ArrayX3d m_row_force;  // one row of springs, for stencils along rows
+  StaggeredColumns m_spring_columns;  // threaded: each stencil's spring forces; empty until then
   void (*m_add)(const spring_kernel::Stencil&, double, const spring_kernel::Arrays&);
+  Store m_store;
 };
 
 }  // namespace drape

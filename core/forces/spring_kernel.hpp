@@ -33,7 +33,15 @@ struct Arrays {
 void add_sse2(const Stencil& stencil, double c, const Arrays& arrays);
 /// The same with AVX packets; call only when has_avx().
 void add_avx(const Stencil& stencil, double c, const Arrays& arrays);
-/// Whether this processor runs add_avx.
+/// The force on i of each spring of rows [row_begin, row_end), as add_sse2 computes it, stored
+/// into spring_force (3 component arrays of N) at i; the threaded force loop adds them up per
+/// particle afterwards (grid_spring_forces.hpp).
+void store_sse2(const Stencil& stencil, double c, const Arrays& arrays,
+                double* const spring_force[3], int row_begin, int row_end);
+/// The same with AVX packets; call only when has_avx().
+void store_avx(const Stencil& stencil, double c, const Arrays& arrays,
+               double* const spring_force[3], int row_begin, int row_end);
+/// Whether this processor runs add_avx and store_avx.
 bool has_avx();
 
 }  // namespace drape::spring_kernel

@@ -9,4 +9,9 @@ void add_avx(const Stencil& stencil, double c, const Arrays& arrays) {
   add_stencil<__m256d>(stencil, c, arrays);
 }
 
+void store_avx(const Stencil& stencil, double c, const Arrays& arrays,
+               double* const spring_force[3], int row_begin, int row_end) {
+  store_stencil<__m256d>(stencil, c, arrays, spring_force, row_begin, row_end);
+}
+
 }  // namespace drape::spring_kernel

@@ -61,26 +61,53 @@ inline void add_springs(const Arrays& a, double k, double rest, double c, long i
   }
 }
 
+// The springs e = 0 .. s.count - 1 of the run from (i, j), in packets and then one by one.
+template <class V, bool damped, bool buffered>
+inline void add_run(const Stencil& s, double c, const Arrays& a, long i, long j) {
+  constexpr long width = sizeof(V) / sizeof(double);
+  long e = 0;
+  for (; e + width <= s.count; e += width)
+    add_springs<V, damped, buffered>(a, s.stiffness, s.rest, c, i + e, j + e, e);
+  for (; e < s.count; ++e)
+    add_springs<double, damped, buffered>(a, s.stiffness, s.rest, c, i + e, j + e, e);
+}
+
 // Springs along a row join overlapping runs: adding a packet's forces to both
 // would store and reload half-overlapping packets, which stalls store forwarding, so their
 // forces are added after the row.
 template <class V, bool damped, bool buffered>
 inline void add_rows(const Stencil& s, double c, const Arrays& a) {
-  constexpr long width = sizeof(V) / sizeof(double);
   for (int r = 0; r < s.rows; ++r) {
     const long i = static_cast<long>(r) * s.cols + s.first, j = i + s.offset;
-    long e = 0;
-    for (; e + width <= s.count; e += width)
-      add_springs<V, damped, buffered>(a, s.stiffness, s.rest, c, i + e, j + e, e);
-    for (; e < s.count; ++e)
-      add_springs<double, damped, buffered>(a, s.stiffness, s.rest, c, i + e, j + e, e);
+    add_run<V, damped, buffered>(s, c, a, i, j);
     if constexpr (buffered) {
       for (int m = 0; m < 3; ++m) {
-        for (e = 0; e < s.count; ++e) a.force[m][i + e] += a.row_force[m][e];
-        for (e = 0; e < s.count; ++e) a.force[m][j + e] -= a.row_force[m][e];
+        for (long e = 0; e < s.count; ++e) a.force[m][i + e] += a.row_force[m][e];
+        for (long e = 0; e < s.count; ++e) a.force[m][j + e] -= a.row_force[m][e];
       }
     }
   }
+}
+
+// The force on i of every spring of rows [row_begin, row_end) into spring_force at i.
+template <class V, bool damped>
+inline void store_rows(const Stencil& s, double c, const Arrays& a, double* const spring_force[3],
+                       int row_begin, int row_end) {
+  Arrays row = a;
+  for (int r = row_begin; r < row_end && r < s.rows; ++r) {
+    const long i = static_cast<long>(r) * s.cols + s.first;
+    for (int m = 0; m < 3; ++m) row.row_force[m] = spring_force[m] + i;
+    add_run<V, damped, true>(s, c, row, i, i + s.offset);
+  }
+}
+
+template <class V>
+inline void store_stencil(const Stencil& s, double c, const Arrays& a,
+                          double* const spring_force[3], int row_begin, int row_end) {
+  if (c != 0.0)
+    store_rows<V, true>(s, c, a, spring_force, row_begin, row_end);
+  else
+    store_rows<V, false>(s, c, a, spring_force, row_begin, row_end);
 }
 
 template <class V>

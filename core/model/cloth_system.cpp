@@ -1,10 +1,12 @@
 #include "core/model/cloth_system.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <optional>
 #include <vector>
 
 #include "core/forces/forces.hpp"
+#include "core/parallel/parallel_for.hpp"
 
 namespace drape {
 
@@ -47,15 +49,17 @@ void ClothSystem::evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceS
 
   // One pass over particles gathers the terms and divides by the mass (a separate pass over 3N
   // values would cost as much again), adding in registers and storing each particle once.
-  for (int i = 0; i < num_particles(); ++i) {
-    Vec3 total = Vec3::Zero();
-    if (springs) total = Vec3((*springs)(i, 0), (*springs)(i, 1), (*springs)(i, 2));
-    if (with_body) total += weight - c_air * particle(v, i);
-    if (with_collision) total += m_collision.force(i, particle(x, i));
-    if (with_friction) total += m_friction.force(i, particle(x, i));
-    if constexpr (per_mass) total /= m;
-    particle(f, i) = total;
-  }
+  parallel_for(num_particles(), threaded_particles_from, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+    for (auto i = static_cast<int>(begin); i < end; ++i) {
+      Vec3 total = Vec3::Zero();
+      if (springs) total = Vec3((*springs)(i, 0), (*springs)(i, 1), (*springs)(i, 2));
+      if (with_body) total += weight - c_air * particle(v, i);
+      if (with_collision) total += m_collision.force(i, particle(x, i));
+      if (with_friction) total += m_friction.force(i, particle(x, i));
+      if constexpr (per_mass) total /= m;
+      particle(f, i) = total;
+    }
+  });
 }
 
 void ClothSystem::acceleration(double t, ConstVecRef x, ConstVecRef v,
@@ -102,17 +106,22 @@ void ClothSystem::apply_velocity_friction(ConstVecRef x, VecRef v, double dt) co
 }
 
 int ClothSystem::project(double t, VecRef x, VecRef v) const {
-  int corrected = 0;
+  // A count, added up exactly in any order.
+  std::atomic<int> corrected{0};
   if (m_dummy) {
     const auto& fixed = m_constraints.mask();
-    for (int i = 0; i < num_particles(); ++i) {
-      if (fixed[i]) continue;
-      Vec3 xi = particle(x, i), vi = particle(v, i);
-      if (!m_collision.correct_penetration(i, xi, vi)) continue;
-      particle(x, i) = xi;
-      particle(v, i) = vi;
-      ++corrected;
-    }
+    parallel_for(num_particles(), threaded_particles_from, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+      int block_corrected = 0;
+      for (auto i = static_cast<int>(begin); i < end; ++i) {
+        if (fixed[i]) continue;
+        Vec3 xi = particle(x, i), vi = particle(v, i);
+        if (!m_collision.correct_penetration(i, xi, vi)) continue;
+        particle(x, i) = xi;
+        particle(v, i) = vi;
+        ++block_corrected;
+      }
+      corrected += block_corrected;
+    });
   }
   m_constraints.project(t, x, v);
   return corrected;

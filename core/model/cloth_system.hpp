@@ -147,7 +147,7 @@ class ClothSystem {
   Collision m_collision;
   LaggedFriction m_friction;
   // Scratch of the spring loop: mutable so that force evaluation stays a const query (a system
-  // is never shared between threads).
+  // is never shared between callers on different threads; its loops thread themselves).
   mutable GridSpringForces m_spring_forces;
   ForceParams m_params;
   ConstraintSet m_constraints;

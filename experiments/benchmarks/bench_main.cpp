@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/forces/grid_spring_forces.hpp"
+#include "core/parallel/parallel_for.hpp"
 #include "experiments/benchmarks/draped_cloth.hpp"
 #include "integrators/explicit/leapfrog.hpp"
 
@@ -17,6 +18,10 @@ namespace {
 using bench::dress_form;
 using bench::draped_cloth;
 using bench::pi;
+
+// The tables of docs/performance/ are of one thread (CPU time), bench_threads.cpp's aside: the
+// hot loops would otherwise take every core (core/parallel) from the start of the program.
+[[maybe_unused]] const bool one_thread = (set_thread_count(1), true);
 
 // Reports wall time per cloth particle per iteration in nanoseconds.
 void report_per_particle(benchmark::State& state, int particles) {

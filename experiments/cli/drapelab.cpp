@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include "core/parallel/parallel_for.hpp"
 #include "core/scene/input_error.hpp"
 #include "core/input/recording.hpp"
 #include "core/scene/scene.hpp"
@@ -18,6 +19,7 @@
 #include "experiments/cli/fabrics_command.hpp"
 #include "experiments/cli/integrators_command.hpp"
 #include "experiments/cli/run_stats.hpp"
+#include "experiments/cli/threads_option.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_files.hpp"
 #include "experiments/cli/run_progress_display.hpp"
@@ -29,7 +31,9 @@
 namespace {
 
 int run_command(const std::string& scene_file, const std::string& out_dir,
-                const std::vector<std::string>& overrides, bool quiet, bool overwrite) {
+                const std::vector<std::string>& overrides, bool quiet, bool overwrite,
+                int threads) {
+  drape::use_threads(threads, drape::available_processors());
   drape::check_run_folder(out_dir, overwrite);  // before anything is read or built
   drape::check_run_folder_not_experiment(out_dir);
   // Progress only where a person watches (a terminal, not --quiet), from when the scene is read.
@@ -90,6 +94,8 @@ static int run_drapelab(int argc, char** argv) {
       "      --set integrator.name=arkode-dirk --set integrator.dt=0.001");
   bool overwrite = false;
   run->add_flag("--overwrite", overwrite, "replace the run files of an earlier run in --out");
+  int run_threads = 0;
+  drape::add_threads_option(*run, run_threads, "all cores");
 
   std::string dirk_table;
   auto* integrators =
@@ -163,7 +169,7 @@ static int run_drapelab(int argc, char** argv) {
   }
 
   try {
-    if (run->parsed()) return run_command(scene_file, out_dir, overrides, quiet, overwrite);
+    if (run->parsed()) return run_command(scene_file, out_dir, overrides, quiet, overwrite, run_threads);
     if (fabrics->parsed()) return drape::list_fabrics(fabrics_json);
     if (convert->parsed()) return drape::convert_command(convert_in, convert_out);
     if (const int code = experiment_commands.dispatch(); code >= 0) return code;

@@ -13,6 +13,7 @@
 #include "core/scene/input_error.hpp"
 #include "core/scene/output_error.hpp"
 #include "experiments/cli/decimal_integer.hpp"
+#include "experiments/cli/threads_option.hpp"
 #include "experiments/sweep/experiment.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/sweep/experiment_merge.hpp"
@@ -52,7 +53,7 @@ std::string python_interpreter() {
 
 }  // namespace
 
-int experiment_command(const std::string& file, const std::string& out_dir, int jobs,
+int experiment_command(const std::string& file, const std::string& out_dir, int jobs, int threads,
                        const std::string& shard, bool list_only, bool progress, bool overwrite) {
   const Experiment experiment = load_experiment(file);
   if (!list_only) check_experiment_folder(out_dir, experiment.name, overwrite);
@@ -60,6 +61,7 @@ int experiment_command(const std::string& file, const std::string& out_dir, int 
   options.out_dir = out_dir;
   options.overwrite = overwrite;
   options.jobs = jobs;
+  options.threads = threads;
   if (!shard.empty()) options.shard = parse_shard(shard);
   options.progress = progress;
   options.terminal = ::isatty(2) != 0;
@@ -129,6 +131,7 @@ ExperimentCommands::ExperimentCommands(CLI::App& app) {
   m_experiment->add_option("--jobs,-j", m_jobs, "parallel runs, at most 1024 (default: all cores)")
       ->transform(decimal_integer())
       ->check(CLI::Range(0, 1024));
+  add_threads_option(*m_experiment, m_threads, "all cores / --jobs, at least 1, for each run");
   m_experiment
       ->add_option("--shard", m_shard,
                    "run only the K-th of N slices (1-based K/N), then `drapelab merge`")
@@ -160,7 +163,7 @@ ExperimentCommands::ExperimentCommands(CLI::App& app) {
 
 int ExperimentCommands::dispatch() const {
   if (m_experiment->parsed())
-    return experiment_command(m_file, m_out, m_jobs, m_shard, m_list, !m_no_progress,
+    return experiment_command(m_file, m_out, m_jobs, m_threads, m_shard, m_list, !m_no_progress,
                               m_overwrite);
   if (m_merge->parsed()) return merge_command(m_out, m_sources);
   if (m_report->parsed()) {

@@ -12,7 +12,7 @@ namespace drape {
 /// Runs an experiment file (or one shard of it) into out_dir; `--list` prints the plan only.
 /// Returns 0 when every run ran (diverged runs are results), 1 when some could not run.
 /// Throws InputError for an out_dir that cannot take it (check_experiment_folder).
-int experiment_command(const std::string& file, const std::string& out_dir, int jobs,
+int experiment_command(const std::string& file, const std::string& out_dir, int jobs, int threads,
                        const std::string& shard, bool list_only, bool progress, bool overwrite);
 /// Joins the runs of shards: copies sources' runs into out_dir and writes its results table.
 /// Returns 0 when the plan is complete, 1 when runs are missing (listed on stderr).
@@ -38,6 +38,7 @@ class ExperimentCommands {
   CLI::App* m_report = nullptr;
   std::string m_file, m_out, m_shard;
   int m_jobs = 0;
+  int m_threads = 0;  // 0: all cores / jobs
   bool m_list = false;
   bool m_no_progress = false;
   bool m_overwrite = false;

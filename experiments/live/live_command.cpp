@@ -9,11 +9,13 @@
 #include <optional>
 #include <thread>
 
+#include "core/parallel/parallel_for.hpp"
 #include "core/scene/input_error.hpp"
 #include "core/scene/output_error.hpp"
 #include "core/scene/json_reader.hpp"
 #include "core/scene/json_text.hpp"
 #include "experiments/cli/decimal_integer.hpp"
+#include "experiments/cli/threads_option.hpp"
 #include "experiments/live/live_page.hpp"
 #include "experiments/live/live_session.hpp"
 #include "experiments/live/sensor_bridge.hpp"
@@ -41,6 +43,7 @@ struct LiveOptions {
   bool live_hands = false;
   bool open = false;
   bool overwrite = false;
+  int threads = 0;  ///< 0: all cores
 };
 
 void check_port(const std::string& option, int port) {
@@ -219,6 +222,7 @@ int report_failure(const std::exception_ptr& failure) {
 
 int live(const LiveOptions& o) {
   check_options(o);
+  use_threads(o.threads, available_processors());
   // Both ports are taken before the session clears --out: a port in use must not cost the
   // folder's earlier run. The session outlives the bridge that feeds it (declared first);
   // frames that arrive before it exists, before the banner, are dropped.
@@ -354,6 +358,7 @@ void add_live_command(CLI::App& app) {
                 "the page's pointer (POST /hand) and the sensor bridge drive the hands instead "
                 "of the scene's recording (always so for a scene without recorded hands)");
   cmd->add_flag("--open", o->open, "open the page in the desktop's browser");
+  add_threads_option(*cmd, o->threads, "all cores");
   cmd->footer(
       "Examples (docs/live.md):\n"
       "  drapelab live experiments/scenes/fig6_map.json --port 8080       # keys r a m in the page\n"

@@ -4,6 +4,8 @@
 
 #include <optional>
 
+#include "core/parallel/parallel_for.hpp"
+
 #include "experiments/run/event_trace_recorder.hpp"
 #include "experiments/run/frame_recorder.hpp"
 #include "experiments/run/provenance.hpp"
@@ -68,6 +70,7 @@ nlohmann::json run_summary(const SceneSimulation& run, const EnergyWriter& energ
       {"particles", system.num_particles()},
       {"springs", system.cloth().springs.size()},
       {"object_particles", system.dummy() ? system.dummy()->size() : 0},
+      {"threads", thread_count()},
       {"energy_initial", e0},
       {"energy_final", energy.last().total()},
       {"energy_drift_max_abs", energy.drift_max_abs()},

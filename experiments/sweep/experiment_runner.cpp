@@ -24,6 +24,7 @@
 #include "experiments/sweep/run_validation.hpp"
 #include "experiments/sweep/deliberate_crash.hpp"
 #include "experiments/run/run_files.hpp"
+#include "core/parallel/parallel_for.hpp"
 #include "experiments/run/run_scene.hpp"
 
 namespace drape {
@@ -200,6 +201,9 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
   }
   const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t jobs = options.jobs > 0 ? options.jobs : hardware;
+  // The runs together use the cores once over: the machine is not oversubscribed.
+  const int run_threads =
+      options.threads > 0 ? options.threads : static_cast<int>(std::max<std::size_t>(1, hardware / jobs));
   auto dir_of = [&](std::size_t p) { return options.out_dir / "runs" / slice[pending[p]]->id; };
   // On a terminal the block is redrawn on a timer with each running child's progress.json.
   std::set<std::size_t> running;
@@ -214,6 +218,7 @@ ExperimentTally run_experiment(const Experiment& experiment, const ExperimentOpt
   run_in_children(
       pending.size(), jobs,
       [&](std::size_t p) {
+        set_thread_count(run_threads);
         execute_run(*slice[pending[p]], dir_of(p));
         return 0;
       },

@@ -15,6 +15,7 @@ namespace drape {
 struct ExperimentOptions {
   std::filesystem::path out_dir;
   int jobs = 0;                ///< runs at once (child processes); 0 = hardware concurrency
+  int threads = 0;             ///< each run's threads; 0 = max(1, hardware concurrency / jobs)
   std::optional<Shard> shard;  ///< run only this slice of the plan
   bool progress = false;       ///< show progress on stderr ...
   bool terminal = false;       ///< ... redrawn in place (a terminal) or one line per finished run

@@ -1,5 +1,7 @@
 #include "integrators/explicit/leapfrog.hpp"
 
+#include "integrators/explicit/kick_drift.hpp"
+
 namespace drape {
 
 void Leapfrog::reset(double t, const Eigen::VectorXd& y) {
@@ -21,14 +23,11 @@ double Leapfrog::step(double t_stop) {
   // Coulomb bound on that contact's tangential change (docs/model.md section 4.12): a particle
   // that sticks then drifts nowhere.
   const double half_h = 0.5 * h;
-  v += half_h * a;
-  m_system.apply_velocity_friction(x, v, half_h);
-  x += h * v;
+  kick_friction_drift(m_system, x, v, a, half_h, h);
   m_system.project(t_next, x, v);
   m_system.acceleration(t_next, x, v, a);
   ++m_counters.rhs_evals;
-  v += half_h * a;  // v(n+1), synchronised; the next kick continues from here
-  m_system.apply_velocity_friction(x, v, half_h);
+  kick_friction(m_system, x, v, a, half_h);  // v(n+1), synchronised; the next kick continues from here
   m_system.constraints().project(t_next, x, v);
   m_have_acceleration = true;
   return accept_fixed_step(t_next);

@@ -1,5 +1,7 @@
 #include "integrators/explicit/symplectic_euler.hpp"
 
+#include "integrators/explicit/kick_drift.hpp"
+
 namespace drape {
 
 void SymplecticEuler::reset(double t, const Eigen::VectorXd& y) {
@@ -14,9 +16,7 @@ double SymplecticEuler::step(double t_stop) {
   VecMap a(m_acceleration.data(), m_acceleration.size());
   m_system.acceleration(m_t, x, v, a);
   ++m_counters.rhs_evals;
-  v += h * a;
-  m_system.apply_velocity_friction(x, v, h);  // docs/model.md section 4.12
-  x += h * v;
+  kick_friction_drift(m_system, x, v, a, h, h);  // docs/model.md section 4.12
   m_system.project(t_next, x, v);
   return accept_fixed_step(t_next);
 }

@@ -3,7 +3,8 @@
 // 43(4), algorithm 1): for each colour of colour_particles, for each free particle i of it, the
 // Newton step dx = H_i^-1 f_i of G's block on i (vertex_block_potential.hpp), halved until G
 // does not rise (at most max_halvings times, else the particle stays). Particles of one colour
-// share no spring, so the order within a colour does not change the result.
+// share no spring, so the order within a colour does not change the result: a colour's
+// particles run on the hot loops' threads (core/parallel).
 #include <Eigen/Core>
 
 #include "integrators/colouring/graph_colouring.hpp"
@@ -30,7 +31,7 @@ class VertexBlockDescent {
  private:
   const ClothSystem& m_system;
   VertexBlockPotential m_potential;
-  std::vector<int> m_order;  // the particles colour by colour (fixed ones skipped when swept)
+  std::vector<std::vector<int>> m_colours;  // the particles, colour by colour (fixed ones skipped)
 };
 
 }  // namespace drape

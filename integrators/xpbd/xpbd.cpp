@@ -5,6 +5,7 @@
 
 #include "core/collision/friction.hpp"
 #include "core/forces/forces.hpp"
+#include "core/parallel/parallel_for.hpp"
 #include "integrators/colouring/graph_colouring.hpp"
 #include "integrators/xpbd/xpbd_constraints.hpp"
 
@@ -27,7 +28,7 @@ Xpbd::Xpbd(ClothSystem& system, const IntegratorOptions& options)
   const double damping = system.cloth().params.damping_spring;
   Eigen::Index e = 0;
   // The colour order is the only order: within a colour no two springs share a particle, so
-  // the sweep's result is fixed by it (and a colour can be split among threads).
+  // the sweep's result is fixed by it (and a colour is split among threads, sweep()).
   for (const std::vector<int>& colour : colour_springs(n, springs)) {
     for (const int s : colour) {
       m_first[e] = springs.first[s];
@@ -39,6 +40,7 @@ Xpbd::Xpbd(ClothSystem& system, const IntegratorOptions& options)
       m_damping_ratio[e] = damping / springs.stiffness[s];
       ++e;
     }
+    m_colour_end.push_back(e);
   }
   m_inverse_mass.resize(n);
   m_w_first.resize(count);
@@ -164,26 +166,41 @@ bool Xpbd::contact_increment(int i, const Vec3& x, double inverse_mass, double i
 
 void Xpbd::sweep(const double* x, double* target, const Eigen::ArrayXd& spring_weight,
                  const Eigen::ArrayXd& contact_weight, double inv_h2, double inv_h) {
-  double increment;
-  Vec3 u;
-  for (Eigen::Index e = 0; e < m_first.size(); ++e) {
-    if (!spring_increment(e, x, spring_weight[e], inv_h2, inv_h, increment, u)) continue;
-    m_lambda[e] += increment;
-    const Vec3 move_first = (m_w_first[e] * increment) * u;
-    const Vec3 move_second = (m_w_second[e] * increment) * u;
-    for (int a = 0; a < 3; ++a) {
-      target[3 * m_first[e] + a] -= move_first[a];
-      target[3 * m_second[e] + a] += move_second[a];
-    }
+  // A colour's springs share no particle, a contact is its particle's alone: each moves only
+  // its own particles, so a colour, and the contacts, run on threads with the same bits.
+  Eigen::Index colour_begin = 0;
+  for (const Eigen::Index colour_end : m_colour_end) {
+    parallel_for(colour_end - colour_begin, threaded_particles_from,
+                 [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+      double increment;
+      Vec3 u;
+      for (Eigen::Index e = colour_begin + begin; e < colour_begin + end; ++e) {
+        if (!spring_increment(e, x, spring_weight[e], inv_h2, inv_h, increment, u)) continue;
+        m_lambda[e] += increment;
+        const Vec3 move_first = (m_w_first[e] * increment) * u;
+        const Vec3 move_second = (m_w_second[e] * increment) * u;
+        for (int a = 0; a < 3; ++a) {
+          target[3 * m_first[e] + a] -= move_first[a];
+          target[3 * m_second[e] + a] += move_second[a];
+        }
+      }
+    });
+    colour_begin = colour_end;
   }
   if (!m_system.dummy()) return;
-  for (const int i : m_free) {
-    if (!contact_increment(i, Eigen::Map<const Vec3>(x + 3 * i), contact_weight[i], inv_h2,
-                           increment, u))
-      continue;
-    m_contact_lambda[i] += increment;
-    Eigen::Map<Vec3>(target + 3 * i) += (m_inverse_mass[i] * increment) * u;
-  }
+  parallel_for(static_cast<std::ptrdiff_t>(m_free.size()), threaded_particles_from,
+               [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+    double increment;
+    Vec3 u;
+    for (std::ptrdiff_t k = begin; k < end; ++k) {
+      const int i = m_free[static_cast<std::size_t>(k)];
+      if (!contact_increment(i, Eigen::Map<const Vec3>(x + 3 * i), contact_weight[i], inv_h2,
+                             increment, u))
+        continue;
+      m_contact_lambda[i] += increment;
+      Eigen::Map<Vec3>(target + 3 * i) += (m_inverse_mass[i] * increment) * u;
+    }
+  });
 }
 
 void Xpbd::sweep_gauss_seidel(double inv_h2, double inv_h) {

@@ -56,6 +56,7 @@ class Xpbd final : public Integrator {
   bool m_jacobi;
   // Springs in sweep order (colour by colour), with what their update needs.
   Eigen::ArrayXi m_first, m_second;
+  std::vector<Eigen::Index> m_colour_end;  // springs [end of the previous colour, end) per colour
   Eigen::ArrayXd m_rest, m_compliance, m_damping_ratio;  // L0, 1/k, c_s / k
   // Set at reset() from the fixed particles: inverse masses and Jacobi's split weights.
   Eigen::ArrayXd m_inverse_mass;                      // N, 0 for fixed particles
