@@ -1,5 +1,5 @@
-// drapelab_bench: one 1/30 s frame of xpbd (20 substeps of one Gauss-Seidel sweep, the
-// defaults) on the n x n cloth of draped_cloth.hpp with its top row pinned, free (no object) and
+// drapelab_bench: one 1/30 s frame of xpbd (20 substeps of one Gauss-Seidel sweep, the setting
+// that keeps up with the Kinect at 64 x 64; the default is 80) on the n x n cloth of draped_cloth.hpp with its top row pinned, free (no object) and
 // draped on the dress form with the smooth contact model, at 32 x 32, 64 x 64 and 128 x 128.
 // See docs/integrators/xpbd.md.
 #include <benchmark/benchmark.h>
@@ -18,6 +18,7 @@ void xpbd_frame(benchmark::State& state, bool draped) {
   IntegratorOptions options;
   options.name = "xpbd";
   options.dt = 1.0 / 30.0;
+  options.settings = {{"substeps", 20}};
   auto method = make_integrator(options, *system);
   method->reset(0.0, y);
   for (auto _ : state) method->step(1e9);
