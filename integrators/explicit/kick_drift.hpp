@@ -24,21 +24,20 @@ inline void kick(VecRef v, ConstVecRef a, double h_kick) {
   });
 }
 
-/// kick_drift with, after the kick, the Coulomb bound on each contact's tangential change of v
-/// (docs/model.md section 4.12); without friction the one fused pass.
-inline void kick_friction_drift(const ClothSystem& system, VecRef x, VecRef v, ConstVecRef a,
-                                double h_kick, double h_drift) {
-  if (system.friction().coefficient() == 0.0) return kick_drift(x, v, a, h_kick, h_drift);
-  kick(v, a, h_kick);
-  system.apply_velocity_friction(x, v, h_kick);
-  x += h_drift * v;
-}
-
-/// kick with the Coulomb bound after it, as kick_friction_drift.
+/// v += h_kick a, then the Coulomb bound on each contact's tangential change of v
+/// (docs/model.md section 4.12; nothing without friction).
 inline void kick_friction(const ClothSystem& system, ConstVecRef x, VecRef v, ConstVecRef a,
                           double h_kick) {
   kick(v, a, h_kick);
   system.apply_velocity_friction(x, v, h_kick);
+}
+
+/// kick_friction, then x += h_drift v; without friction kick_drift's one fused pass.
+inline void kick_friction_drift(const ClothSystem& system, VecRef x, VecRef v, ConstVecRef a,
+                                double h_kick, double h_drift) {
+  if (system.friction().coefficient() == 0.0) return kick_drift(x, v, a, h_kick, h_drift);
+  kick_friction(system, x, v, a, h_kick);
+  x += h_drift * v;
 }
 
 }  // namespace drape
