@@ -97,8 +97,10 @@ class Manipulator {
                                                     const Vec3& v) const;
   int nearest_free_particle(const Vec3& p, const Eigen::VectorXd& y, double& distance) const;
   /// The free particle `hand` came within the hold threshold of first over (previous update,
-  /// t], the cloth taken as in `y`; -1 if none.
+  /// t], the cloth moving linearly from the previous update's positions to `y`'s; -1 if none.
   int first_reached_particle(Hand hand, double t, const Eigen::VectorXd& y) const;
+  /// Keeps the cloth's positions at t for the next step's hold search when it may need them.
+  void keep_positions_for_hold_search(double t, const Eigen::VectorXd& y);
 
   ClothSystem& m_system;
   const HandTrack* m_track;
@@ -108,6 +110,9 @@ class Manipulator {
   std::size_t m_next_key = 0;
   /// Time of the previous update (the last step's start); NaN before the first.
   double m_previous_update = std::numeric_limits<double>::quiet_NaN();
+  /// The cloth's positions at m_previous_update, kept only when a hold search may need them
+  /// (empty otherwise: the search then takes the cloth at the step's end).
+  Eigen::VectorXd m_previous_positions;
   std::vector<ManipulationEvent> m_events;
 };
 

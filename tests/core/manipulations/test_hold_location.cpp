@@ -15,13 +15,18 @@ namespace {
 // pinned at two corners, and a hand 1 cm above it crossing row 2 along +x at 1.5 m/s from
 // x = -8 cm. The hand comes within the 1.5 cm threshold of (2, 0) first, at x = -1.12 cm,
 // t = 0.0459 s; at the 1/30 s step's end, t = 0.0667 s, it is 2 cm on, right above (2, 1).
+// With `cloth_moves`, the hand stays at its start and the cloth slides along -x at 1.5 m/s: the
+// same motion relative to the cloth, found only if the cloth is followed inside the step too.
 struct CrossingHand {
   static Vec3 hand_at(double t) { return Vec3(-0.08 + 1.5 * t, 1.01, 0.04); }
+  static Vec3 cloth_shift(double t) { return Vec3(-1.5 * t, 0, 0); }
 
   std::unique_ptr<ClothSystem> system;
   HandTrack track;
 
-  CrossingHand() {
+  bool cloth_moves;
+
+  explicit CrossingHand(bool moving_cloth = false) : cloth_moves(moving_cloth) {
     ClothParams p = testing::small_cloth(6, 6);
     p.origin = Vec3(0, 1, 0);
     p.row_dir = Vec3(0, 0, 1);
@@ -33,7 +38,7 @@ struct CrossingHand {
     std::vector<HandFrame> frames(61);
     for (int k = 0; k < 61; ++k) {
       frames[k].t = 0.01 * (k - 10);
-      frames[k].right = HandSample{hand_at(frames[k].t), false};
+      frames[k].right = HandSample{cloth_moves ? hand_at(0.0) : hand_at(frames[k].t), false};
     }
     track = HandTrack(frames, SensorTransform{}, TimeMap{}, TrackPolicy{});
   }
@@ -44,8 +49,11 @@ struct CrossingHand {
     ManipulationParams params;
     params.hold_threshold = 0.015;
     Manipulator manipulator(*system, &track, params);
-    const Eigen::VectorXd y = system->initial_state(0.0);
+    const Eigen::VectorXd rest = system->initial_state(0.0);
     for (int k = 0; k * h < 0.2; ++k) {
+      Eigen::VectorXd y = rest;
+      if (cloth_moves)
+        for (int i = 0; i < system->num_particles(); ++i) y.segment<3>(3 * i) += cloth_shift(k * h);
       manipulator.update(k * h, y);
       for (const ManipulationEvent& e : manipulator.events())
         if (e.type == "hold") return e;
@@ -78,6 +86,23 @@ TEST(HoldLocation, AtTheStepEndTheHandIsNearerTheNextParticle) {
   const int first = scene.system->cloth().index(2, 0), next = scene.system->cloth().index(2, 1);
   EXPECT_LT((x.segment<3>(3 * next) - hand).norm(), (x.segment<3>(3 * first) - hand).norm());
   EXPECT_GT(scene.first_hold(1.0 / 30.0).value, 0.015);  // (2, 0) is past the threshold then
+}
+
+TEST(HoldLocation, FollowsTheClothInsideTheStep) {
+  // The cloth moves under a still hand: at every step the particle reached first is (2, 0),
+  // which a search against the cloth at the step's end would miss at 1/30 s and 50 ms.
+  const double entry = (0.08 - std::sqrt(0.015 * 0.015 - 0.01 * 0.01)) / 1.5;
+  for (double h : {2e-4, 1e-3, 1.0 / 30.0, 0.05}) {
+    CrossingHand scene(true);
+    const int first = scene.system->cloth().index(2, 0);
+    const ManipulationEvent hold = scene.first_hold(h);
+    EXPECT_EQ(hold.particle, first) << h;
+    EXPECT_GE(hold.t, entry - 1e-12) << h;
+    EXPECT_LT(hold.t, entry + h) << h;
+    const Vec3 x = scene.system->cloth().rest_positions.segment<3>(3 * first) +
+                   CrossingHand::cloth_shift(hold.t);
+    EXPECT_NEAR(hold.value, (x - CrossingHand::hand_at(0.0)).norm(), 1e-9) << h;
+  }
 }
 
 }  // namespace
