@@ -62,7 +62,7 @@ def read_run_series(run, summary, name):
 def read_run_event_trace(run, summary=None):
     """runfiles.read_event_trace of the run (None without event_trace/); a ValueError naming
     t.npy when its frames end before the last window does: `output.event_trace_window` after the
-    last event at or before sim_time (or the start), or sim_time when that is earlier. Arrays cut
+    last event at or before sim_time that changed the state (not an ignored key; or the start), or sim_time when that is earlier. Arrays cut
     alike kept their shapes, and the vibration after the later events read a few frames or none.
     `summary` is read from the run folder when not given."""
     frames = runfiles.read_event_trace(run)
@@ -71,7 +71,9 @@ def read_run_event_trace(run, summary=None):
     summary = runfiles.read_summary(run) if summary is None else summary
     end = run_end(run, summary)
     window = _scene_number(summary, Path(run) / "summary.json", "output.event_trace_window", 0.5)
-    starts = [0.0] + [float(e["t"]) for e in summary.get("events", []) if e["t"] <= end]
+    # An ignored key changes nothing, so it opens no window (event_trace_recorder.cpp).
+    starts = [0.0] + [float(e["t"]) for e in summary.get("events", [])
+                      if e["t"] <= end and e.get("type") != "ignored"]
     _check_reaches(Path(run) / "event_trace" / "t.npy", float(frames["t"][-1]),
                    min(max(starts) + window, end), "the last event's window end", summary, run,
                    "output.event_trace_interval", 0.0, "frames")

@@ -77,6 +77,20 @@ class RunSeriesEndTest(runfolder.RunFolderTest):
         runfolder.write_event_trace(self.run, t[:15], np.zeros((15, 2, 3)))
         self.assertEqual(len(read_run_event_trace(self.run, runfiles.read_summary(self.run))["t"]), 15)
 
+    def test_an_ignored_key_opens_no_window(self):
+        # A release key with nothing held at 0.3 s is ignored: the recorder opens no window there,
+        # so frames to 0.25 s are the whole trace (a run whose hand never held, as a seed can).
+        events = [{"type": "hold", "t": 0.1}, {"type": "release", "t": 0.2}, {"type": "ignored", "t": 0.3}]
+        t = np.concatenate([np.arange(0.0, 0.051, 0.01), np.arange(0.1, 0.151, 0.01), np.arange(0.2, 0.251, 0.01)])
+        output = {"event_trace_interval": 0.01, "event_trace_window": 0.05}
+        runfolder.write_summary(self.run, events, scene={"output": output}, sim_time=1.0, step_max=0.001)
+        runfolder.write_event_trace(self.run, t, np.zeros((len(t), 2, 3)))
+        self.assertEqual(len(read_run_event_trace(self.run, runfiles.read_summary(self.run))["t"]), len(t))
+        events[2]["type"] = "hold"  # a real event there would need its window
+        runfolder.write_summary(self.run, events, scene={"output": output}, sim_time=1.0, step_max=0.001)
+        with self.assertRaises(ValueError):
+            read_run_event_trace(self.run, runfiles.read_summary(self.run))
+
     def test_restart_error_has_the_rows_the_summary_counts(self):
         header = "t,events,horizon,status,error_rms,error_max,reference_motion_rms"
         rows = [(0.0, "start", 0.01, "ok", 1e-6, 2e-6, 1e-3), (0.1, "hold", 0.01, "ok", 2e-6, 3e-6, 1e-3)]
