@@ -1,8 +1,8 @@
 // drapelab_bench: the cost of reaching converged backward Euler's step to 1e-4 m and 1e-6 m
 // (largest particle distance) on the same 1/30 s frame (converged_cost.hpp: the fourth frame of
 // the swinging sheet and of the smooth drape, 32 x 32 and 64 x 64) with projective-dynamics and
-// vbd, plain and Chebyshev-accelerated, and with implicit-euler's line-search Newton. See
-// docs/performance/converged-cost.md.
+// vbd, plain and Chebyshev-accelerated, and with implicit-euler's line-search Newton; and where
+// PD and VBD end after the cap (BM_ConvergedCostEndPoint). See docs/performance/converged-cost.md.
 //
 // Each benchmark first finds, untimed and once per process, the fewest iterations (PD, VBD) or
 // the loosest tolerance (the Newton) whose frame is within the distance of the reference, then
@@ -19,6 +19,7 @@
 #include <tuple>
 
 #include "experiments/benchmarks/converged_cost.hpp"
+#include "integrators/newton/incremental_potential.hpp"
 
 namespace drape {
 namespace {
@@ -179,6 +180,28 @@ void newton_cost(benchmark::State& state, CostScene scene, int n, double toleran
   state.counters["rtol"] = rtol;
 }
 
+// Where a method ends after the cap: its distance, the frame's incremental potential there minus
+// at the reference (both with the spring damping's directions frozen at the reference, so that
+// they are one function) and the largest entry of its gradient (kg m/s, with the directions at
+// the point itself: zero at a backward Euler step). Computed once; the time means nothing.
+void end_point(benchmark::State& state, CostScene scene, int n, const IteratedMethod& method) {
+  const bench::CostFrame& f = frame_of(scene, n);
+  IncrementalPotential potential(*f.system, ForceSplit::all);
+  Eigen::VectorXd reference = f.reference, end = bench::one_frame(
+      *f.system, f.y, bench::iterated_options(method, cap));
+  Eigen::VectorXd gradient(end.size() / 2);
+  potential.begin_stage(bench::cost_frame, bench::cost_frame, f.y, reference);
+  potential.begin_stage(bench::cost_frame, bench::cost_frame, f.y, end);
+  potential.freeze_damping(reference);
+  const double difference = potential.value(end) - potential.value(reference);
+  potential.freeze_damping(end);
+  potential.gradient(end, gradient);
+  for (auto _ : state) benchmark::DoNotOptimize(end.data());
+  state.counters["distance"] = bench::position_distance(end, f.reference);
+  state.counters["potential_minus_reference"] = difference;
+  state.counters["gradient_inf"] = gradient.lpNorm<Eigen::Infinity>();
+}
+
 const bool registered = [] {
   for (const CostScene scene : {CostScene::sheet, CostScene::drape})
     for (const int n : {32, 64})
@@ -198,6 +221,15 @@ const bool registered = [] {
                                        })
               ->Unit(benchmark::kMillisecond);
       }
+  for (const CostScene scene : {CostScene::sheet, CostScene::drape})
+    for (const IteratedMethod& method : bench::iterated_methods)
+      benchmark::RegisterBenchmark((std::string("BM_ConvergedCostEndPoint/") +
+                                    bench::scene_name(scene) + "/32/" + method.label)
+                                       .c_str(),
+                                   [=, &method](benchmark::State& state) {
+                                     end_point(state, scene, 32, method);
+                                   })
+          ->Iterations(1);
   return true;
 }();
 
