@@ -1,0 +1,111 @@
+#pragma once
+// The frames of the converged-cost comparison (docs/performance/converged-cost.md), shared by
+// bench_converged_cost.cpp, which times them, and tests/validation/test_converged_cost.cpp,
+// which checks the iteration counts its table states: the fourth 1/30 s frame of the swinging
+// sheet and of the smooth drape (bench_scenes.hpp), converged backward Euler's step on it (the
+// line-search Newton at a tight tolerance), and the methods that approach it with a count.
+#include <algorithm>
+#include <memory>
+#include <string>
+
+#include "experiments/benchmarks/bench_scenes.hpp"
+#include "integrators/interface/registry.hpp"
+
+namespace drape::bench {
+
+inline constexpr double cost_frame = 1.0 / 30.0;
+
+enum class CostScene { sheet, drape };
+
+inline const char* scene_name(CostScene scene) {
+  return scene == CostScene::sheet ? "sheet" : "drape";
+}
+
+/// implicit-euler's converged step (the line-search Newton, docs/integrators/implicit-euler.md)
+/// stopping at ARKODE's test with weights 1 / (rtol |y_n| + atol), its default linear solver
+/// unless `linear_solver` names one; a solve that fails throws instead of halving the step, so
+/// that every method takes the same step.
+inline IntegratorOptions converged_newton(double rtol, double atol,
+                                          const std::string& linear_solver = "") {
+  IntegratorOptions o;
+  o.name = "implicit-euler";
+  o.dt = cost_frame;
+  o.solve = "converged";
+  o.linear_solver = linear_solver;
+  o.rtol = rtol;
+  o.atol = atol;
+  o.max_newton_iters = 400;
+  o.max_step_halvings = 0;
+  return o;
+}
+
+/// The reference: converged backward Euler far below the distances compared (weighted update
+/// 0.1 / 1e10 of |y|: about 1e-11 m), solved with sparse LDLT, not the compared CG.
+inline IntegratorOptions reference_newton() {
+  return converged_newton(1e-10, 1e-12, "sparse-direct");
+}
+
+/// One frame of `options` from y; the end state.
+inline Eigen::VectorXd one_frame(ClothSystem& system, const Eigen::VectorXd& y,
+                                 const IntegratorOptions& options) {
+  auto method = make_integrator(options, system);
+  method->reset(0.0, y);
+  method->step(cost_frame);
+  return method->state();
+}
+
+/// Largest particle distance (m) between the positions (first half) of two states.
+inline double position_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < a.size() / 6; ++i)
+    largest = std::max(largest, (a.segment<3>(3 * i) - b.segment<3>(3 * i)).norm());
+  return largest;
+}
+
+/// The compared step: the state y after three reference frames from the scene's start (so that
+/// the cloth moves: the swinging sheet falls and swings, the drape slides into contact), and
+/// the reference frame from y.
+struct CostFrame {
+  std::unique_ptr<ClothSystem> system;
+  Eigen::VectorXd y, reference;
+};
+
+/// The swinging sheet (bench_scenes.hpp, 0.2 kg, two corners pinned) or the smooth drape
+/// (draped_cloth round the dress form, smooth contact, top row pinned) at n x n.
+inline CostFrame cost_frame_of(CostScene scene, int n) {
+  CostFrame f;
+  f.system = scene == CostScene::sheet ? swinging_sheet(n, f.y) : smooth_drape(n, f.y);
+  for (int k = 0; k < 3; ++k) f.y = one_frame(*f.system, f.y, reference_newton());
+  f.reference = one_frame(*f.system, f.y, reference_newton());
+  return f;
+}
+
+/// A method whose distance to the reference is set by its `iterations` key.
+struct IteratedMethod {
+  const char* label;
+  const char* name;
+  bool chebyshev;
+  double rho;  ///< Chebyshev's spectral radius estimate (used with chebyshev only)
+};
+
+/// PD and VBD plain and Chebyshev-accelerated (Wang 2015). PD's rho near its plain contraction
+/// (1 - 1.5e-4 an iteration on the 12 x 12 sheet, docs/integrators/projective-dynamics.md);
+/// VBD's default 0.95 and a larger one. VBD starts at its default, `velocity`.
+inline const IteratedMethod iterated_methods[] = {
+    {"pd", "projective-dynamics", false, 0.9},
+    {"pd-chebyshev-0.999", "projective-dynamics", true, 0.999},
+    {"pd-chebyshev-0.9999", "projective-dynamics", true, 0.9999},
+    {"vbd", "vbd", false, 0.95},
+    {"vbd-chebyshev-0.95", "vbd", true, 0.95},
+    {"vbd-chebyshev-0.99", "vbd", true, 0.99},
+};
+
+inline IntegratorOptions iterated_options(const IteratedMethod& m, long iterations) {
+  IntegratorOptions o;
+  o.name = m.name;
+  o.dt = cost_frame;
+  o.settings = {{"iterations", iterations}, {"chebyshev", m.chebyshev}, {"rho", m.rho}};
+  return o;
+}
+
+}  // namespace drape::bench
