@@ -207,8 +207,8 @@ def make_figures(directory, out_dir, rows, parameters, shown=()):
             "attach_error_mean", "attach iterations", "attach error [m]", exclude=detail)),
         ("attach_error_vs_solver_work", lambda: plots.line_plot(
             out_dir, "attach_error_vs_solver_work", solver_runs, parameters, solver_work, "attach_error_mean",
-            "substeps (xpbd) or iterations (projective-dynamics, vbd) a step", "attach error [m]",
-            exclude=detail + SOLVER_WORK)),
+            "substeps or iterations a step", "attach error [m]",
+            exclude=detail + SOLVER_WORK + ("integrator.dt", "manipulation.attach_iterations"))),
         ("attach_error_vs_time", lambda: plots.line_plot(
             out_dir, "attach_error_vs_time", stepped_runs, parameters, settle_time, "attach_error_mean",
             "attach_iterations x dt [s]", "attach error [m]",
