@@ -173,6 +173,16 @@ def html_table(rows, parameters, pages=None):
     return f"<div class='wide'><table><tr>{head}</tr>{''.join(body)}</table></div>"
 
 
+# The keys of a field solver's work per step, the first a run sets: xpbd's substeps, projective
+# dynamics' and vbd's iterations (xpbd's iterations a substep come second).
+SOLVER_WORK = ("integrator.substeps", "integrator.iterations")
+
+
+def solver_work(row):
+    """The run's SOLVER_WORK value (nan for a method without one)."""
+    return next((v for k in SOLVER_WORK if math.isfinite(v := plots.number(row.get(k)))), math.nan)
+
+
 def make_figures(directory, out_dir, rows, parameters, shown=()):
     """Every figure the table supports and the experiment's `metrics` ask for (all when it names
     none), as (stem, caption)."""
@@ -182,6 +192,10 @@ def make_figures(directory, out_dir, rows, parameters, shown=()):
     def settle_time(row):
         return plots.number(row.get("manipulation.attach_iterations")) * plots.number(row.get("dt"))
 
+    # The attach figures: a field solver's runs that sweep its work per step (its "calculation
+    # time") against that work, the others against their attach iterations.
+    solver_runs = [row for row in rows if math.isfinite(solver_work(row))]
+    stepped_runs = [row for row in rows if not math.isfinite(solver_work(row))]
     detail = plots.INTEGRATOR_DETAIL[1:]
     makers = [
         ("energy_vs_time", lambda: plots.energy_vs_time(directory, out_dir, rows, parameters)),
@@ -189,10 +203,14 @@ def make_figures(directory, out_dir, rows, parameters, shown=()):
         ("work_precision", lambda: plots.work_precision(out_dir, rows, parameters)),
         ("restart_error_vs_horizon", lambda: plots.restart_error_vs_horizon(directory, out_dir, rows, parameters)),
         ("attach_error_vs_iterations", lambda: plots.line_plot(
-            out_dir, "attach_error_vs_iterations", rows, parameters, "manipulation.attach_iterations",
+            out_dir, "attach_error_vs_iterations", stepped_runs, parameters, "manipulation.attach_iterations",
             "attach_error_mean", "attach iterations", "attach error [m]", exclude=detail)),
+        ("attach_error_vs_solver_work", lambda: plots.line_plot(
+            out_dir, "attach_error_vs_solver_work", solver_runs, parameters, solver_work, "attach_error_mean",
+            "substeps or iterations a step", "attach error [m]",
+            exclude=detail + SOLVER_WORK + ("integrator.dt", "manipulation.attach_iterations"))),
         ("attach_error_vs_time", lambda: plots.line_plot(
-            out_dir, "attach_error_vs_time", rows, parameters, settle_time, "attach_error_mean",
+            out_dir, "attach_error_vs_time", stepped_runs, parameters, settle_time, "attach_error_mean",
             "attach_iterations x dt [s]", "attach error [m]",
             exclude=detail + ("manipulation.attach_iterations",))
          if "manipulation.attach_iterations" in parameters else None),

@@ -39,6 +39,7 @@ SUMMARY_METRICS = (
     ("attach_error_mean", "Attach error (distance from p_o + delta n_o)", "mm", 1e3),
     ("energy_drift_max_rel", "Largest relative energy change from the start (manipulations and damping included)", "1", 1.0),
     ("wall_seconds", "Wall time", "s", 1.0),
+    ("cpu_seconds", "CPU time (all the run's threads)", "s", 1.0),
 )
 
 

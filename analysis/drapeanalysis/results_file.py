@@ -19,8 +19,8 @@ RESULTS_FIELDS = {"name": (str, None), "question": (str, None), "metrics": (list
 
 # The numbers of a results row (experiments/sweep/results_table.cpp): a number or null. A
 # string there ("nan", edited in) went into the tables as a blank without a word.
-NUMERIC_COLUMNS = ("dt", "steps", "rhs_evals", "wall_seconds", "sim_time", "duration", "particles",
-                   "springs", "object_particles", "energy_initial", "energy_final",
+NUMERIC_COLUMNS = ("dt", "steps", "rhs_evals", "wall_seconds", "cpu_seconds", "sim_time", "duration",
+                   "particles", "springs", "object_particles", "energy_initial", "energy_final",
                    "energy_drift_max_abs", "energy_drift_max_rel", "energy_drift_final_rel",
                    "energy_rise_max_rel", "hold_count", "release_count", "map_count", "ignored_count",
                    "attach_count", "attach_error_mean", "attach_error_max", "stable_value",

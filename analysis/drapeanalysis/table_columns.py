@@ -4,8 +4,8 @@ lengths in mm, as the summary and the figures do: cloth errors and vibrations ar
 
 # Columns of the report's table besides the parameters; every column is in metrics.csv.
 TABLE_COLUMNS = (
-    "status", "sim_time", "reason", "steps", "rhs_evals", "wall_seconds", "energy_drift_max_rel",
-    "energy_drift_final_rel", "energy_drift_exponent", "attach_error_mean", "vibration_rms_final",
+    "status", "sim_time", "reason", "steps", "rhs_evals", "wall_seconds", "cpu_seconds",
+    "energy_drift_max_rel", "energy_drift_final_rel", "energy_drift_exponent", "attach_error_mean", "vibration_rms_final",
     "vibration_rms_events", "vibration_rms_holding", "hand_jitter_rms_holding", "settle_time", "contact_switch_rate_final", "hand_jitter_rms_final",
     "mapping_gap_mean_mapped", "mapping_gap_mean_final", "mapping_gap_max_final",
     "spring_strain_rms_mapped", "spring_strain_rms_final", "spring_strain_max_final",
@@ -17,6 +17,7 @@ TABLE_COLUMNS = (
 # (`stable_value`: the bisected parameter's).
 UNITS = {
     "wall_seconds": "s",
+    "cpu_seconds": "s",
     "sim_time": "s",
     "energy_drift_max_rel": "of E(0)",
     "energy_drift_final_rel": "of E(0)",

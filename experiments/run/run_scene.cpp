@@ -65,6 +65,7 @@ nlohmann::json run_summary(const SceneSimulation& run, const EnergyWriter& energ
       {"sim_time", integrator.time()},
       {"duration", run.scene().duration},
       {"wall_seconds", simulation.wall_seconds()},
+      {"cpu_seconds", simulation.cpu_seconds()},
       {"rhs_evals", counters.rhs_evals},
       {"counters", counters.to_json()},
       {"particles", system.num_particles()},

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 
 #include "experiments/run/initial_perturbation.hpp"
 
@@ -14,6 +15,13 @@ namespace {
 
 // Times within this of the end count as the end (fixed steps accumulate round-off).
 double end_tolerance(double duration) { return 1e-12 * std::max(1.0, duration); }
+
+// CPU time of the process, every thread's (POSIX clock_gettime, CLOCK_PROCESS_CPUTIME_ID).
+double process_cpu_seconds() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
 
 }  // namespace
 
@@ -40,7 +48,9 @@ void Simulation::add_observer(SimulationObserver& observer) {
 
 bool Simulation::advance(double t_until, const std::function<bool()>& keep_going) {
   const auto wall_start = std::chrono::steady_clock::now();
+  const double cpu_start = process_cpu_seconds();
   const double observed_before = m_observer_seconds;
+  const double observed_cpu_before = m_observer_cpu_seconds;
   if (!m_started) {
     m_started = true;
     notify([&](SimulationObserver& o) { o.on_start(*this); });
@@ -56,6 +66,7 @@ bool Simulation::advance(double t_until, const std::function<bool()>& keep_going
   m_wall_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count() -
       (m_observer_seconds - observed_before);
+  m_cpu_seconds += process_cpu_seconds() - cpu_start - (m_observer_cpu_seconds - observed_cpu_before);
   return !m_status.ended();
 }
 
@@ -150,9 +161,11 @@ template <class Call>
 void Simulation::notify(Call&& call) {
   if (m_observers.empty()) return;
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = process_cpu_seconds();
   for (SimulationObserver* o : m_observers) call(*o);
   m_observer_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  m_observer_cpu_seconds += process_cpu_seconds() - cpu_start;
 }
 
 void Simulation::end(std::string status, std::string reason) {

@@ -116,6 +116,9 @@ class Simulation {
   double max_step() const { return m_max_step; }
   /// Wall-clock seconds spent in advance(), the observers' calls excluded.
   double wall_seconds() const { return m_wall_seconds; }
+  /// CPU seconds of this process (all its threads) over the same region as wall_seconds(): on a
+  /// shared machine the cost a run would have alone, where wall time also counts the waits.
+  double cpu_seconds() const { return m_cpu_seconds; }
 
  private:
   double next_landing_time() const;
@@ -123,7 +126,7 @@ class Simulation {
   void end(std::string status, std::string reason);
   /// Applies perturbation.after_map for every map the manipulator made since the last call.
   void perturb_new_maps(Eigen::VectorXd& y);
-  /// Calls every observer, timing them (wall_seconds() leaves them out).
+  /// Calls every observer, timing them (wall_seconds() and cpu_seconds() leave them out).
   template <class Call>
   void notify(Call&& call);
 
@@ -144,6 +147,8 @@ class Simulation {
   double m_max_step = 0.0;
   double m_wall_seconds = 0.0;
   double m_observer_seconds = 0.0;
+  double m_cpu_seconds = 0.0;
+  double m_observer_cpu_seconds = 0.0;
   long m_maps = 0;  ///< maps perturbed so far
 };
 

@@ -81,13 +81,13 @@ std::string header_difference(const nlohmann::json& source, const nlohmann::json
 }
 
 // The first field in which two results of one run differ, or "": the machine, the build and the
-// wall time may (a run repeated elsewhere), the outcome may not: two folders with different
+// wall and CPU time may (a run repeated elsewhere), the outcome may not: two folders with different
 // results of one run (overlapping shards, an edited result.json) are refused, not merged by
 // keeping the first without a word.
 std::string result_difference(const nlohmann::json& a, const nlohmann::json& b) {
   static const std::set<std::string> may_differ = {
-      "wall_seconds", "date",          "machine.hostname", "machine.cpu",     "machine.cores",
-      "git_commit",   "version",       "build_type",       "sundials_version"};
+      "wall_seconds", "cpu_seconds", "date",       "machine.hostname", "machine.cpu",
+      "machine.cores", "git_commit", "version", "build_type",       "sundials_version"};
   for (const nlohmann::json* row : {&a, &b})
     for (const auto& item : row->items())
       if (!may_differ.count(item.key()) &&

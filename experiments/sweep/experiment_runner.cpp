@@ -50,7 +50,7 @@ nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, RunProgressFi
   const BisectSpec& b = *run.bisect;
   nlohmann::json probes = nlohmann::json::array();
   nlohmann::json last_stable_summary;
-  double wall = 0.0;
+  double wall = 0.0, cpu = 0.0;
   auto probe = [&](double value) {
     const Scene scene = load_scene(run.scene_path.string(), run.assignments(value));
     // At most low, high and `steps` probes; fewer when the bracket is found wrong at once.
@@ -62,6 +62,7 @@ nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, RunProgressFi
     const bool stable = o.status == "ok" && (!b.max_drift || drift <= *b.max_drift) &&
                         (!b.max_rise || rise <= *b.max_rise);
     wall += o.summary.value("wall_seconds", 0.0);
+    cpu += o.summary.value("cpu_seconds", 0.0);
     probes.push_back({{"value", value}, {"status", o.status}, {"stable", stable},
                       {"energy_drift_max_rel", drift}, {"energy_rise_max_rel", rise}});
     if (stable) last_stable_summary = o.summary;
@@ -89,6 +90,7 @@ nlohmann::json run_bisect(const RunSpec& run, const fs::path& dir, RunProgressFi
   summary["status"] = status;
   summary["reason"] = reason;
   summary["wall_seconds"] = wall;
+  summary["cpu_seconds"] = cpu;
   write_json(dir / experiment_run_file::bisection, {{"parameter", b.parameter}, {"stable_value", stable_value},
                                           {"unstable_value", unstable_value}, {"probes", probes}});
   nlohmann::json row = result_row(run, summary);

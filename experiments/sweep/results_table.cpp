@@ -17,8 +17,8 @@ namespace {
 // Metric columns in the order a reader expects them; anything else follows, sorted.
 const std::vector<std::string>& metric_columns() {
   static const std::vector<std::string> names = {
-      "integrator", "table", "dt", "adaptive", "steps", "rhs_evals", "wall_seconds", "sim_time",
-      "duration", "time", "particles", "springs", "object_particles", "energy_initial",
+      "integrator", "table", "dt", "adaptive", "steps", "rhs_evals", "wall_seconds", "cpu_seconds",
+      "sim_time", "duration", "time", "particles", "springs", "object_particles", "energy_initial",
       "energy_final", "energy_drift_max_abs", "energy_drift_max_rel", "energy_drift_final_rel",
       "energy_rise_max_rel", "events", "hold_count", "release_count", "map_count",
       "ignored_count", "attach_count",
@@ -58,8 +58,8 @@ nlohmann::json result_row(const RunSpec& run, const nlohmann::json& summary) {
   nlohmann::json row = identity(run, summary.value("status", "error"));
   row["reason"] = summary.value("reason", "");
   for (const char* key : {"integrator", "table", "dt", "adaptive", "steps", "rhs_evals",
-                          "wall_seconds", "sim_time", "duration", "time", "particles", "springs",
-                          "object_particles", "energy_initial", "energy_final",
+                          "wall_seconds", "cpu_seconds", "sim_time", "duration", "time", "particles",
+                          "springs", "object_particles", "energy_initial", "energy_final",
                           "energy_drift_max_abs", "energy_drift_max_rel", "energy_rise_max_rel"})
     if (summary.contains(key)) row[key] = summary[key];
   const double e0 = summary.value("energy_initial", 0.0);

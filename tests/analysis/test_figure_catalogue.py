@@ -33,8 +33,8 @@ class FigureCatalogueTest(unittest.TestCase):
     def test_log_axis_figures_explain_the_arrow_once(self):
         with_arrow = {name for name, caption in CAPTIONS.items() if ARROW in caption}
         self.assertEqual(with_arrow, {"work_precision", "accuracy_cost", "restart_error_vs_horizon",
-                                      "attach_error_vs_iterations", "attach_error_vs_time",
-                                      "vibration_vs_dt", "contact_switch_vs_dt"})
+                                      "attach_error_vs_iterations", "attach_error_vs_solver_work",
+                                      "attach_error_vs_time", "vibration_vs_dt", "contact_switch_vs_dt"})
         for name in with_arrow:
             self.assertEqual(CAPTIONS[name].count(ARROW), 1, name)
         self.assertTrue(CAPTIONS["vibration_vs_dt"].endswith("; series at the same x are drawn slightly apart."))

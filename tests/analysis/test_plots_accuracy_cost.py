@@ -133,6 +133,43 @@ class AccuracyCostTest(unittest.TestCase):
         labels = {t.get_text() for t in kept[0].axes[0].texts}
         self.assertTrue({"0.0001 s", "linear_tolerance=0.1"} <= labels, labels)
 
+    def test_a_solvers_work_per_step_joins_its_points(self):
+        # xpbd at 1/30 s with 10 and 20 substeps, vbd with 5 iterations: one line for xpbd
+        # labelled by its substeps, the step they share in the legend.
+        rows = [run("xpbd", 1 / 30, s, wall=0.1 * k, sim=1.0, error=1e-2 / k, vibration=1e-3)
+                | {"integrator.substeps": 10 * k, "id": f"xpbd-{k}-{s}"} for k in (1, 2) for s in (1, 2)]
+        rows += [run("vbd", 1 / 30, 1, wall=0.3, sim=1.0, error=2e-2, vibration=1e-3)
+                 | {"integrator.iterations": 5}]
+        parameters = PARAMETERS + ["integrator.substeps", "integrator.iterations"]
+        settings = plots_accuracy_cost.points(rows, parameters, "restart_error_after_hold",
+                                              "wall_seconds")["combination4"]
+        self.assertEqual(set(settings), {"xpbd", "vbd"})
+        self.assertEqual([p["text"] for p in settings["xpbd"]], ["substeps=10", "substeps=20"])
+        self.assertEqual(settings["xpbd"][0]["fixed"], "dt=0.0333 s")
+        self.assertEqual(settings["vbd"][0]["fixed"], "dt=0.0333 s, iterations=5")
+        np.testing.assert_allclose([p["x"] for p in settings["xpbd"]], [0.1, 0.2])
+        np.testing.assert_allclose([p["y"] for p in settings["xpbd"]], [10.0, 5.0])
+        kept = []
+        with mock.patch.object(style.plt, "close", kept.append):
+            plots.accuracy_cost(Path(self._tmp.name), rows, parameters)
+        self.assertTrue({"substeps=10", "substeps=20"} <= {t.get_text() for t in kept[0].axes[0].texts})
+
+    def test_cpu_time_is_the_cost_where_the_runs_have_it(self):
+        # The CPU time is a tenth of the wall time (a shared machine): x follows the CPU time.
+        rows = [r | {"cpu_seconds": 0.1 * r["wall_seconds"]} for r in ROWS]
+        self.assertEqual(plots_accuracy_cost.cost_column(rows), ("cpu_seconds", "CPU"))
+        self.assertEqual(plots_accuracy_cost.cost_column(ROWS), ("wall_seconds", "wall"))
+        kept = []
+        with mock.patch.object(style.plt, "close", kept.append):
+            plots.accuracy_cost(Path(self._tmp.name), rows, PARAMETERS)
+        ax = kept[0].axes[0]
+        self.assertEqual(ax.get_xlabel(), "CPU seconds per simulated second (real time = 1)")
+        bars = {bar.lines[0].get_color(): bar for bar in ax.containers}
+        line = bars[style.INTEGRATOR_COLORS["leapfrog"]].lines[0]
+        np.testing.assert_allclose(np.asarray(line.get_xdata(), float), [0.3])
+        reference = [line for line in ax.lines if line.get_label().startswith("reference")]
+        np.testing.assert_allclose(reference[0].get_xdata(), [2.0, 2.0])
+
     def test_marker_size_grows_with_the_vibration(self):
         low, high = plots_accuracy_cost.SIZE_RANGE
         self.assertAlmostEqual(plots_accuracy_cost.marker_size(1e-4, 1e-4, 1e-3), low)

@@ -295,6 +295,43 @@ class ReportProvenanceAndViewerTest(unittest.TestCase):
             plt.close("all")
         self.assertEqual(texts, ["1 of 2", "no value (2 of 2)"])  # 4 ms: no value in either run
 
+    def test_a_field_solvers_attach_error_is_drawn_against_its_work_per_step(self):
+        # leap-frog's attach iterations 1 and 10; xpbd's substeps 10 and 20 (1 iteration each)
+        # and vbd's iterations 5 at one attach iteration: the solvers only in their own figure.
+        def run(integrator, attach, error, **keys):
+            return {"id": f"{integrator}{attach}{keys}", "scene": "scenes/fig4.json", "integrator": integrator,
+                    "integrator.name": integrator, "manipulation.attach_iterations": attach,
+                    "dt": 1 / 30, "attach_error_mean": error, "status": "ok"} | keys
+        rows = [run("leapfrog", 1, 0.01, **{"integrator.dt": 2e-4}),
+                run("leapfrog", 10, 0.02, **{"integrator.dt": 2e-4}),
+                run("xpbd", 1, 0.03, **{"integrator.substeps": 10, "integrator.iterations": 1}),
+                run("xpbd", 1, 0.04, **{"integrator.substeps": 20, "integrator.iterations": 1}),
+                run("vbd", 1, 0.05, **{"integrator.iterations": 5})]
+        self.assertTrue(math.isnan(report.solver_work(rows[0])))
+        self.assertEqual([report.solver_work(r) for r in rows[2:]], [10, 20, 5])
+        parameters = ["integrator.name", "integrator.dt", "integrator.substeps", "integrator.iterations",
+                      "manipulation.attach_iterations"]
+        import matplotlib.pyplot as plt
+        from unittest import mock
+        from drapeanalysis import plots
+        drawn = {}
+        real_save = plots.style.save
+        def keep_lines(fig, out_dir, stem):
+            drawn[stem] = {bars.get_label(): list(bars.lines[0].get_xdata()) for ax in fig.axes
+                           for bars in ax.containers}
+            return real_save(fig, out_dir, stem)
+        with tempfile.TemporaryDirectory() as tmp, mock.patch.object(plots.style, "save", keep_lines):
+            stems = [stem for stem, _ in report.make_figures(Path(tmp), Path(tmp), rows, parameters,
+                                                             ("attach_error",))]
+            plt.close("all")
+        self.assertEqual(stems, ["attach_error_vs_iterations", "attach_error_vs_solver_work",
+                                 "attach_error_vs_time"])
+        self.assertEqual(len(drawn["attach_error_vs_iterations"]), 1)  # leap-frog's line alone
+        solver_lines = drawn["attach_error_vs_solver_work"]
+        self.assertEqual(len(solver_lines), 2)
+        np.testing.assert_allclose(sorted(x for xs in solver_lines.values() for x in xs), [5, 10, 20],
+                                   rtol=0.2)  # series at the same x are dodged
+
     def test_html_links_the_viewer_pages_and_says_why_a_run_has_none(self):
         rows = [dict(id="a", scene="scenes/s.json", integrator="leapfrog", **{"integrator.dt": 0.001}),
                 dict(id="b", scene="scenes/s.json", integrator="implicit-euler", **{"integrator.dt": 0.002}),

@@ -67,7 +67,7 @@ TEST(DrapelabRun, WritesSummaryEnergyAndState) {
   EXPECT_EQ(summary["steps"], 200);
   EXPECT_DOUBLE_EQ(summary["sim_time"].get<double>(), 0.2);
   EXPECT_EQ(summary["rhs_evals"], 201);
-  for (const char* key : {"dt", "wall_seconds", "energy_initial", "energy_final",
+  for (const char* key : {"dt", "wall_seconds", "cpu_seconds", "energy_initial", "energy_final",
                           "energy_drift_max_rel", "events"})
     EXPECT_TRUE(summary.contains(key)) << key;
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -138,6 +139,37 @@ TEST(Simulation, TraceFramesBetweenStepsComeFromTheInterpolantAtExactTimes) {
     EXPECT_NEAR(vy, -9.81 * t, 1e-11) << t;
   }
   EXPECT_EQ(frames, 2 * 101);
+}
+
+// Spends `per_step` seconds of process CPU time (std::clock) in every on_step, as a writer or a
+// restart branch would, and adds up what it spent.
+struct CpuBurner : SimulationObserver {
+  explicit CpuBurner(double per_step) : per_step(per_step) {}
+  double per_step;
+  double spent = 0.0;
+  void on_start(const Simulation&) override {}
+  void on_step(const Simulation&, bool) override {
+    const std::clock_t start = std::clock();
+    while (std::clock() - start < per_step * CLOCKS_PER_SEC) {
+    }
+    spent += static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+  }
+};
+
+// cpu_seconds() is the process's CPU time over the loop less the observers' (docs/outputs.md):
+// measured around run() with std::clock, the loop's CPU time is cpu_seconds() plus what the
+// observer spent, up to the clock calls; the stepping of a 4 x 5 cloth is a small part of it.
+TEST(Simulation, CpuTimeLeavesTheObserversOut) {
+  SceneSimulation run(swinging(R"({"name": "implicit-euler", "dt": 0.01})", 0.0));
+  CpuBurner burner(0.002);
+  run.simulation().add_observer(burner);
+  const std::clock_t start = std::clock();
+  ASSERT_EQ(run.simulation().run().status, "ok");
+  const double around = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+  ASSERT_GT(burner.spent, 50 * 0.002 * 0.99) << "50 steps of 2 ms";
+  EXPECT_GT(run.simulation().cpu_seconds(), 0.0);
+  EXPECT_LT(run.simulation().cpu_seconds(), 0.1 * burner.spent);
+  EXPECT_NEAR(run.simulation().cpu_seconds() + burner.spent, around, 0.01 * around);
 }
 
 // The runaway bound allows a free fall over `runaway_horizon` (default: the duration), so a run

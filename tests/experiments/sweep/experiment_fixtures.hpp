@@ -65,11 +65,12 @@ inline json read_json(const fs::path& file) {
   return json::parse(in);
 }
 
-// Rows without the columns that differ between two executions of the same run: the wall time
-// and the date it ran (provenance, docs/outputs.md).
+// Rows without the columns that differ between two executions of the same run: the wall and
+// CPU time and the date it ran (provenance, docs/outputs.md).
 inline json without_wall_time(json results) {
   for (auto& row : results["runs"]) {
     row.erase("wall_seconds");
+    row.erase("cpu_seconds");
     row.erase("date");
   }
   results.erase("shard");

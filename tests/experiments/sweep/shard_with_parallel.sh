@@ -22,6 +22,7 @@ def rows(path):
     doc = json.load(open(path))
     for row in doc["runs"]:
         row.pop("wall_seconds")
+        row.pop("cpu_seconds")
         row.pop("date")  # when the run ran (provenance): differs between executions
     return doc["runs"]
 whole, merged = rows(sys.argv[1]), rows(sys.argv[2])

@@ -57,8 +57,8 @@ TEST(ExperimentMerge, TakesRunsOnlyOfThisExperimentAndItsPlannedRuns) {
                      source_spec.string() + not_planned}));
 }
 
-// Two folders with a finished result of one run: the wall time (and the machine, the build) may
-// differ, the outcome may not (keeping the first without a word would hide it).
+// Two folders with a finished result of one run: the wall and CPU time (and the machine, the
+// build) may differ, the outcome may not (keeping the first without a word would hide it).
 TEST(ExperimentMerge, TwoDifferentResultsOfOneRunAreRefused) {
   const SmallExperiment small("merge_disagree");
   drape::run_experiment(small.experiment, small.options);
@@ -68,6 +68,7 @@ TEST(ExperimentMerge, TwoDifferentResultsOfOneRunAreRefused) {
   const fs::path result = copy / "runs" / small.plan[0].id / "result.json";
   json row = read_json(result);
   row["wall_seconds"] = row["wall_seconds"].get<double>() + 1.0;
+  row["cpu_seconds"] = row["cpu_seconds"].get<double>() + 1.0;
   std::ofstream(result) << row;
   EXPECT_EQ(drape::merge_results(ours, {copy}).size(), 0u);
   row["energy_final"] = 123.0;
