@@ -210,6 +210,9 @@ Perturbation read_perturbation(JsonReader in) {
     throw in.error("distribution", "expected \"uniform\" or \"gaussian\"");
   p.gaussian = distribution == "gaussian";
   p.after_map = in.boolean("after_map", false);
+  p.stretch = in.within("stretch", in.number("stretch", 0.0), limits::max_stretch);
+  p.velocity = in.at_most("velocity", in.non_negative("velocity", in.number("velocity", 0.0)),
+                          limits::max_velocity_perturbation);
   in.finish();
   return p;
 }

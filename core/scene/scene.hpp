@@ -27,11 +27,18 @@ struct OutputOptions {
   double event_trace_window = 0.5;  ///< length of that window [s]
 };
 
-/// A seeded perturbation of the initial positions, for ensembles (docs/scene.md; off by default).
+/// A seeded perturbation of the initial state, for ensembles and hard starts (docs/scene.md; off
+/// by default).
 struct Perturbation {
   double position = 0.0;   ///< amplitude as a fraction of cloth.spacing; 0: none
   std::uint64_t seed = 0;  ///< the same seed gives the same perturbation
   bool gaussian = false;   ///< false: uniform in [-a, a] per coordinate; true: normal, std a
+  /// Every particle's position scaled about the pins' centroid by 1 + stretch, the pins moving
+  /// with the cloth: every spring starts this fraction longer (negative: shorter); 0: none.
+  double stretch = 0.0;
+  /// Amplitude of the seeded initial velocity of the free particles [m/s], drawn as the
+  /// positions are; 0: at rest.
+  double velocity = 0.0;
   /// Also perturb right after each map, which lays every particle out anew and so erases the
   /// initial perturbation (the k-th map draws from stream k of the seed).
   bool after_map = false;

@@ -52,6 +52,13 @@ constexpr double max_duration = 1e6;
 /// perturbed neighbours can pass each other, so the run would start from a tangled cloth, not
 /// from a perturbed one (an ensemble's default is 1e-3).
 constexpr double max_perturbation = 0.5;
+/// perturbation.stretch, a fraction of every spring's rest length: at -1 every particle starts
+/// at one point; beyond half, either way, the start is no longer a stretched or compressed cloth
+/// but a tangle or a cloth twice its size.
+constexpr double max_stretch = 0.5;
+/// perturbation.velocity [m/s]: ten times the runaway bound's own 10 m/s (docs/outputs.md); no
+/// hard start of a draping cloth is faster.
+constexpr double max_velocity_perturbation = 100.0;
 /// Horizons of restart_error: each one reruns the scene's method after every event.
 constexpr std::size_t max_restart_horizons = 16;
 /// Rows of an output file implied by an interval: rows per frame x frames (trace.csv, frames/),

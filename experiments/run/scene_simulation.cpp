@@ -45,8 +45,7 @@ SceneSimulation::SceneSimulation(const Scene& scene, const std::string& integrat
   settings.perturbation = scene.perturbation;
   settings.spacing = scene.cloth.spacing;
   Eigen::VectorXd initial = m_system->initial_state(0.0);
-  perturb_initial_positions(scene.perturbation, scene.cloth.spacing, m_system->constraints(),
-                            initial);
+  perturb_initial_state(scene.perturbation, scene.cloth.spacing, m_system->constraints(), initial);
   m_simulation = std::make_unique<Simulation>(*m_system, *m_manipulator, *m_integrator, settings,
                                               std::move(initial));
 }

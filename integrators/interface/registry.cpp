@@ -33,7 +33,7 @@ const ArkodeIntegrator arkode_integrators[] = {
      "ARKODE ARKStep explicit Runge-Kutta, any ERK table (default Bogacki-Shampine 3(2))",
      {true, false, false, false, false}},
     {"arkode-dirk", ArkodeKind::diagonally_implicit, "implicit",
-     "ARKODE ARKStep diagonally implicit Runge-Kutta, any DIRK table (default KVAERNO_4_2_3)",
+     "ARKODE ARKStep diagonally implicit Runge-Kutta, any DIRK table (default TRBDF2_3_3_2)",
      {true, true, true, false, false}},
     {"arkode-imex", ArkodeKind::imex, "imex",
      "ARKODE ARKStep IMEX: springs implicit, gravity, air and collision explicit",

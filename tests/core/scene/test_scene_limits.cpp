@@ -65,6 +65,19 @@ TEST(SceneLimits, ValuesWhoseProductsOverflowAreRefused) {
   EXPECT_EQ(error_for(with("perturbation.position=1e300")),
             "scene.json: perturbation.position: must be at most 0.5, got 1e+300");
   EXPECT_EQ(error_for(with("perturbation.position=0.5")), "no error");
+  // A hard start: a spring stretched by -1 has no length, one stretched past half is another
+  // cloth; velocities beyond 100 m/s are no draping start.
+  EXPECT_EQ(error_for(with("perturbation.stretch=-1")),
+            "scene.json: perturbation.stretch: must be within +-0.5");
+  EXPECT_EQ(error_for(with("perturbation.stretch=0.6")),
+            "scene.json: perturbation.stretch: must be within +-0.5");
+  EXPECT_EQ(error_for(with("perturbation.stretch=\"1%\"")),
+            "scene.json: perturbation.stretch: expected a number, got string");
+  EXPECT_EQ(error_for(with("perturbation.stretch=-0.5", "perturbation.velocity=100")), "no error");
+  EXPECT_EQ(error_for(with("perturbation.velocity=-0.5")),
+            "scene.json: perturbation.velocity: must not be negative, got -0.5");
+  EXPECT_EQ(error_for(with("perturbation.velocity=1e300")),
+            "scene.json: perturbation.velocity: must be at most 100.0, got 1e+300");
 }
 
 TEST(SceneLimits, OutputIntervalsMustAdvanceTimeAndBoundTheFiles) {

@@ -68,6 +68,85 @@ TEST(InitialPerturbation, EachStreamItsOwnAndStreamZeroTheInitialOne) {
   EXPECT_LE((s1 - y0).cwiseAbs().maxCoeff(), 1e-3 * 0.02);
 }
 
+// Three particles in a row along x, 0.02 m apart, at rest.
+Eigen::VectorXd row_of_three() {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(18);
+  for (int i = 0; i < 3; ++i) y[3 * i] = 0.02 * i;
+  y[1] = y[4] = y[7] = 1.3;
+  return y;
+}
+
+TEST(InitialPerturbation, StretchScalesEverySpringAboutTheOnePinWhichStays) {
+  ConstraintSet pins(3);
+  Eigen::VectorXd y = row_of_three();
+  pins.fix_at(0, y.segment<3>(0));
+  stretch_initial_positions(0.01, pins, y);
+  EXPECT_EQ(y.segment<3>(0), Vec3(0.0, 1.3, 0.0)) << "the pin stays";
+  EXPECT_NEAR((y.segment<3>(3) - y.segment<3>(0)).norm(), 0.0202, 1e-15);
+  EXPECT_NEAR((y.segment<3>(6) - y.segment<3>(3)).norm(), 0.0202, 1e-15);
+  EXPECT_EQ(y.tail(9).norm(), 0.0) << "at rest";
+}
+
+TEST(InitialPerturbation, StretchAboutThePinsCentroidMovesThePinsWithTheCloth) {
+  // Pins at both ends: the middle particle stays, the pins move out and are fixed there, so no
+  // spring is left at its rest length next to a pin.
+  ConstraintSet pins(3);
+  Eigen::VectorXd y = row_of_three();
+  pins.fix_at(0, y.segment<3>(0));
+  pins.fix_at(2, y.segment<3>(6));
+  stretch_initial_positions(-0.05, pins, y);
+  EXPECT_NEAR(y[0], 0.001, 1e-15);
+  EXPECT_NEAR(y[3], 0.02, 1e-15);
+  EXPECT_NEAR(y[6], 0.039, 1e-15);
+  EXPECT_EQ(pins.trajectory(0)->position(1.0), Vec3(y.segment<3>(0)));
+  EXPECT_EQ(pins.trajectory(2)->position(1.0), Vec3(y.segment<3>(6)));
+  // Without pins the cloth's centroid stays.
+  ConstraintSet free(3);
+  Eigen::VectorXd z = row_of_three();
+  stretch_initial_positions(0.05, free, z);
+  EXPECT_NEAR(z[0], -0.001, 1e-15);
+  EXPECT_NEAR(z[6], 0.041, 1e-15);
+}
+
+TEST(InitialPerturbation, VelocityWithinTheAmplitudeOnFreeParticlesOnlyAndSeeded) {
+  Perturbation p;
+  p.velocity = 2.0;
+  p.seed = 5;
+  ConstraintSet fixed(50);
+  fixed.fix_at(4, Vec3::Zero());
+  const Eigen::VectorXd y0 = Eigen::VectorXd::Zero(300);
+  Eigen::VectorXd y = y0;
+  perturb_initial_velocities(p, fixed, y);
+  EXPECT_EQ(y.head(150).norm(), 0.0) << "positions unchanged";
+  EXPECT_LE(y.tail(150).cwiseAbs().maxCoeff(), 2.0);
+  EXPECT_GT(y.tail(150).cwiseAbs().maxCoeff(), 1.0) << "uses the amplitude";
+  // The mean square of a uniform draw in [-a, a] is a^2 / 3; 147 draws give it within 20 %.
+  EXPECT_NEAR(y.tail(150).squaredNorm() / 147.0, 4.0 / 3.0, 0.27);
+  EXPECT_EQ(y.segment<3>(162).norm(), 0.0) << "a fixed particle keeps its trajectory's velocity";
+  Eigen::VectorXd again = y0;
+  perturb_initial_velocities(p, fixed, again);
+  EXPECT_EQ(again, y) << "reproducible bit for bit";
+  // The velocities do not depend on whether the positions are perturbed too.
+  p.position = 1e-3;
+  Eigen::VectorXd both = y0;
+  perturb_initial_state(p, 0.02, fixed, both);
+  EXPECT_EQ(both.tail(150), y.tail(150));
+  EXPECT_GT(both.head(150).norm(), 0.0);
+  p.seed = 6;
+  Eigen::VectorXd other = y0;
+  perturb_initial_velocities(p, fixed, other);
+  EXPECT_GT((other - y).norm(), 1.0);
+}
+
+TEST(InitialPerturbation, NoStretchNoVelocityChangesNothing) {
+  ConstraintSet pins(3);
+  Eigen::VectorXd y = row_of_three();
+  pins.fix_at(0, y.segment<3>(0));
+  const Eigen::VectorXd y0 = y;
+  perturb_initial_state(Perturbation{}, 0.02, pins, y);
+  EXPECT_EQ(y, y0);
+}
+
 // The state 10 ms after a map at t = 0.01 s of a small cloth on the dress form (leap-frog).
 Eigen::VectorXd after_map(int seed, bool again) {
   auto source = nlohmann::json::parse(R"({

@@ -134,16 +134,16 @@ TEST(TableStability, ImplicitInverseNormSeparatesTheTablesThatGainEnergy) {
 
 TEST(TableStability, TheDefaultDirkTableIsOneThatSettles) {
   // arkode-dirk's default must take 1/30 s steps in contact without adding energy
-  // (docs/integrators/tables-at-large-steps.md, "Default table"): a table that settles on the
-  // swinging sheet, below the |A_I^-1| threshold, L-stable and stiffly accurate (b is A's last row:
-  // the step is its last stage, an implicit solve, and damps stiff modes as that stage does), of
-  // order 3 with an order-2 embedding for adaptive runs.
+  // (docs/findings/dirk_default.md): a table that settles on the swinging sheet, below the
+  // |A_I^-1| threshold, L-stable and stiffly accurate (b is A's last row: the step is its last
+  // stage, an implicit solve, and damps stiff modes as that stage does), with an embedding for
+  // adaptive runs: TR-BDF2, order 2 with an order-3 embedding.
   const std::string name =
       default_arkode_table(ArkodeKind::diagonally_implicit).substr(std::string("ARKODE_").size());
   EXPECT_NE(std::find(settle.begin(), settle.end(), name), settle.end()) << name;
   const ButcherTableau t = arkode_dirk(name);
-  EXPECT_EQ(t.q, 3);
-  EXPECT_EQ(t.p, 2);
+  EXPECT_EQ(t.q, 2);
+  EXPECT_EQ(t.p, 3);
   for (std::size_t j = 0; j < t.b.size(); ++j) EXPECT_DOUBLE_EQ(t.b[j], t.A.back()[j]) << j;
   const TableStability s = table_stability(t);
   EXPECT_NEAR(s.stiff_limit, 0.0, 1e-10);
