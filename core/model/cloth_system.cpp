@@ -143,37 +143,49 @@ EnergyBreakdown ClothSystem::energy(ConstVecRef x, ConstVecRef v) const {
   return e;
 }
 
+void ClothSystem::spring_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite,
+                                        Eigen::Index e, Mat3& jx, Mat3& jv) const {
+  const SpringSet& springs = m_cloth.springs;
+  const double c_spring = m_cloth.params.damping_spring;
+  const int i = springs.first[e], j = springs.second[e];
+  const Vec3 d = particle(x, j) - particle(x, i);
+  jx = spring_jacobian(d, springs.stiffness[e], springs.rest[e], definite);
+  jv = Mat3::Zero();
+  if (c_spring > 0.0) {
+    jv = damping_velocity_jacobian(d, c_spring);
+    // The damping's dependence on x is not symmetric; a definite (SPD) request leaves it out.
+    if (!definite) jx += damping_position_jacobian(d, particle(v, j) - particle(v, i), c_spring);
+  }
+}
+
+Mat3 ClothSystem::particle_position_jacobian(ConstVecRef x, bool definite, ForceSplit split,
+                                             int i) const {
+  Mat3 contact = Mat3::Zero();
+  if (split.with_collision) contact = m_collision.jacobian(i, particle(x, i), definite);
+  // The friction Hessian is positive semi-definite (friction.hpp): definite either way.
+  if (split.with_collision && m_friction.frozen()) contact -= m_friction.hessian(i, particle(x, i));
+  return contact;
+}
+
+Mat3 ClothSystem::air_jacobian(ForceSplit split) const {
+  return split.with_body ? Mat3(-m_cloth.params.damping_air * Mat3::Identity()) : Mat3::Zero();
+}
+
 // Calls visit(i, j, Jx, Jv) for every pair block: j >= 0 for springs (the pair pattern of
 // forces.hpp), j < 0 for a block acting on particle i alone (dF_i/dx_i, dF_i/dv_i).
 template <class Visit>
 void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite,
                                           ForceSplit split, Visit&& visit) const {
   const SpringSet& springs = m_cloth.springs;
-  const double c_spring = m_cloth.params.damping_spring;
-  const bool with_springs = split.with_springs;
-  for (Eigen::Index e = 0; with_springs && e < springs.size(); ++e) {
-    const int i = springs.first[e], j = springs.second[e];
-    const Vec3 d = particle(x, j) - particle(x, i);
-    Mat3 jx = spring_jacobian(d, springs.stiffness[e], springs.rest[e], definite);
-    Mat3 jv = Mat3::Zero();
-    if (c_spring > 0.0) {
-      jv = damping_velocity_jacobian(d, c_spring);
-      // The damping's dependence on x is not symmetric; a definite (SPD) request leaves it out.
-      if (!definite) jx += damping_position_jacobian(d, particle(v, j) - particle(v, i), c_spring);
-    }
-    visit(i, j, jx, jv);
+  Mat3 jx, jv;
+  for (Eigen::Index e = 0; split.with_springs && e < springs.size(); ++e) {
+    spring_jacobian_block(x, v, definite, e, jx, jv);
+    visit(springs.first[e], springs.second[e], jx, jv);
   }
   if (!split.with_collision && !split.with_body) return;
-  const Mat3 air = split.with_body ? Mat3(-m_cloth.params.damping_air * Mat3::Identity())
-                                   : Mat3::Zero();
-  const bool with_friction = split.with_collision && m_friction.frozen();
-  for (int i = 0; i < num_particles(); ++i) {
-    Mat3 contact = Mat3::Zero();
-    if (split.with_collision) contact = m_collision.jacobian(i, particle(x, i), definite);
-    // The friction Hessian is positive semi-definite (friction.hpp): definite either way.
-    if (with_friction) contact -= m_friction.hessian(i, particle(x, i));
-    visit(i, -1, contact, air);
-  }
+  const Mat3 air = air_jacobian(split);
+  for (int i = 0; i < num_particles(); ++i)
+    visit(i, -1, particle_position_jacobian(x, definite, split, i), air);
 }
 
 void ClothSystem::force_jacobian_times(ConstVecRef x, ConstVecRef v,
@@ -242,26 +254,36 @@ void ClothSystem::force_jacobian_blocks(ConstVecRef x, ConstVecRef v, bool defin
                                         ForceSplit split, JacobianBlocks& blocks) const {
   const auto springs = static_cast<std::size_t>(m_cloth.springs.size());
   const auto particles = static_cast<std::size_t>(num_particles());
-  // Every block is written: the spring blocks in spring order, each particle block once.
+  // Every block is written once, by the thread of its spring or particle.
   blocks.spring_x.resize(springs);
   blocks.spring_v.resize(springs);
-  blocks.particle_x.assign(particles, Mat3::Zero());
-  blocks.particle_v.assign(particles, Mat3::Zero());
-  std::size_t e = 0;
-  for_each_jacobian_block(x, v, definite, split, [&](int i, int j, const Mat3& jx, const Mat3& jv) {
-    if (j < 0) {
-      blocks.particle_x[static_cast<std::size_t>(i)] = jx;
-      blocks.particle_v[static_cast<std::size_t>(i)] = jv;
-      return;
-    }
-    blocks.spring_x[e] = jx;
-    blocks.spring_v[e] = jv;
-    ++e;
-  });
-  if (!split.with_springs) {
-    std::fill(blocks.spring_x.begin(), blocks.spring_x.end(), Mat3::Zero());
-    std::fill(blocks.spring_v.begin(), blocks.spring_v.end(), Mat3::Zero());
-  }
+  blocks.particle_x.resize(particles);
+  blocks.particle_v.resize(particles);
+  parallel_for(m_cloth.springs.size(), threaded_particles_from,
+               [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+                 for (auto e = static_cast<std::size_t>(begin); e < static_cast<std::size_t>(end);
+                      ++e) {
+                   if (split.with_springs) {
+                     spring_jacobian_block(x, v, definite, static_cast<Eigen::Index>(e),
+                                           blocks.spring_x[e], blocks.spring_v[e]);
+                   } else {
+                     blocks.spring_x[e].setZero();
+                     blocks.spring_v[e].setZero();
+                   }
+                 }
+               });
+  const bool with_particles = split.with_collision || split.with_body;
+  const Mat3 air = air_jacobian(split);
+  parallel_for(num_particles(), threaded_particles_from,
+               [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+                 for (auto i = static_cast<int>(begin); i < end; ++i) {
+                   const auto k = static_cast<std::size_t>(i);
+                   blocks.particle_x[k] = with_particles
+                                              ? particle_position_jacobian(x, definite, split, i)
+                                              : Mat3::Zero();
+                   blocks.particle_v[k] = with_particles ? air : Mat3::Zero();
+                 }
+               });
 }
 
 }  // namespace drape

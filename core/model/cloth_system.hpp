@@ -138,6 +138,13 @@ class ClothSystem {
   // forces(), or M^-1 forces() with per_mass (the division fused into the last pass).
   template <bool per_mass>
   void evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceSplit split) const;
+  /// Spring e's blocks J = dF_i/dx_j and dF_i/dv_j.
+  void spring_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite, Eigen::Index e,
+                             Mat3& jx, Mat3& jv) const;
+  /// dF_i/dx_i of the collision and friction terms that `split` selects.
+  Mat3 particle_position_jacobian(ConstVecRef x, bool definite, ForceSplit split, int i) const;
+  /// dF_i/dv_i of the air damping, if `split` selects it.
+  Mat3 air_jacobian(ForceSplit split) const;
   template <class Visit>
   void for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite, ForceSplit split,
                                Visit&& visit) const;

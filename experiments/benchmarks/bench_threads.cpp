@@ -1,11 +1,15 @@
-// The hot loops on 1 and 2 threads (core/parallel): the force evaluation of the wrapped cloth
-// and a leap-frog step of the settled drape, at n x n. Wall time (the threads' CPU time adds
-// up); the speed-up is the 1-thread row over the 2-thread row. docs/performance/threads.md.
+// The hot loops on 1 and 2 threads (core/parallel): the force evaluation of the wrapped cloth,
+// a leap-frog step of the settled drape, and a 1/30 s frame of one-solve implicit Euler
+// (pcg-multigrid), vbd (20 sweeps) and xpbd (20 substeps of one sweep) on the drape with the
+// smooth contact model, top row pinned, at n x n. Wall time (the threads' CPU time adds up);
+// the speed-up is the 1-thread row over the 2-thread row. docs/performance/threads.md.
 #include <benchmark/benchmark.h>
 
 #include "core/parallel/parallel_for.hpp"
+#include "experiments/benchmarks/bench_scenes.hpp"
 #include "experiments/benchmarks/draped_cloth.hpp"
 #include "integrators/explicit/leapfrog.hpp"
+#include "integrators/interface/registry.hpp"
 
 namespace drape {
 namespace {
@@ -53,6 +57,50 @@ BENCHMARK(BM_ThreadsLeapfrogStep)
     ->ArgsProduct({{32, 48, 64, 128}, {1, 2}})
     ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);
+
+// One frame per benchmark iteration, continuing from the last.
+void frames(benchmark::State& state, IntegratorOptions options) {
+  const ThreadCount threads(state);
+  Eigen::VectorXd y;
+  auto system = bench::smooth_drape(static_cast<int>(state.range(0)), y);
+  options.dt = 1.0 / 30.0;
+  auto method = make_integrator(options, *system);
+  method->reset(0.0, y);
+  for (auto _ : state) method->step(1e9);
+}
+
+void BM_ThreadsImplicitEulerFrame(benchmark::State& state) {
+  IntegratorOptions options;
+  options.name = "implicit-euler";
+  frames(state, options);
+}
+
+void BM_ThreadsVbdFrame(benchmark::State& state) {
+  IntegratorOptions options;
+  options.name = "vbd";
+  options.settings = {{"iterations", 20}};
+  frames(state, options);
+}
+
+void BM_ThreadsXpbdFrame(benchmark::State& state) {
+  IntegratorOptions options;
+  options.name = "xpbd";
+  options.settings = {{"substeps", 20}, {"iterations", 1}};
+  frames(state, options);
+}
+
+BENCHMARK(BM_ThreadsImplicitEulerFrame)
+    ->ArgsProduct({{32, 64, 128}, {1, 2}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ThreadsVbdFrame)
+    ->ArgsProduct({{32, 64, 128}, {1, 2}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ThreadsXpbdFrame)
+    ->ArgsProduct({{32, 64, 128}, {1, 2}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace drape

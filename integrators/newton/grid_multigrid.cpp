@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/parallel/parallel_for.hpp"
+
 namespace drape::detail {
 
 namespace {
@@ -93,6 +95,23 @@ void GridMultigrid::build(const SymmetricBlockMatrix& fine, int rows, int cols) 
       level.galerkin.insert(level.galerkin.end(), list.begin(), list.end());
       level.galerkin_start.push_back(static_cast<int>(level.galerkin.size()));
     }
+    // P's columns (P^T's rows, for the restriction's gather): coarse node c's finer nodes
+    // ascending, the order in which a scatter through P's rows would add them.
+    level.child_start.assign(static_cast<std::size_t>(coarse_rows * coarse_cols) + 1, 0);
+    for (const int c : level.parent) ++level.child_start[static_cast<std::size_t>(c) + 1];
+    for (std::size_t c = 1; c < level.child_start.size(); ++c)
+      level.child_start[c] += level.child_start[c - 1];
+    level.child.resize(level.parent.size());
+    level.child_weight.resize(level.parent.size());
+    std::vector<int> next(level.child_start.begin(), level.child_start.end() - 1);
+    for (int i = 0; i < rows * cols; ++i)
+      for (int p = level.parent_start[static_cast<std::size_t>(i)];
+           p < level.parent_start[static_cast<std::size_t>(i) + 1]; ++p) {
+        const auto slot = static_cast<std::size_t>(
+            next[static_cast<std::size_t>(level.parent[static_cast<std::size_t>(p)])]++);
+        level.child[slot] = i;
+        level.child_weight[slot] = level.weight[static_cast<std::size_t>(p)];
+      }
     rows = coarse_rows;
     cols = coarse_cols;
     finer = &level.matrix;
@@ -105,7 +124,8 @@ void GridMultigrid::update(const SymmetricBlockMatrix& fine) {
     const SymmetricBlockMatrix& a = level.matrix;
     std::vector<PackedBlock>& coarse = level.matrix.blocks();
     const std::vector<PackedBlock>& blocks = finer->blocks();
-    for (int i = 0; i < a.rows(); ++i) {
+    // Each coarse row gathers its own blocks: rows split among threads.
+    const auto form_row = [&](int i) {
       for (int k = a.row_start(i); k < a.row_start(i + 1); ++k) {
         PackedBlock sum = PackedBlock::Zero();
         for (int t = level.galerkin_start[static_cast<std::size_t>(k)];
@@ -117,7 +137,10 @@ void GridMultigrid::update(const SymmetricBlockMatrix& fine) {
         coarse[static_cast<std::size_t>(k)] = sum;
       }
       level.matrix.finish_row(i);
-    }
+    };
+    parallel_for(a.rows(), threaded_particles_from, [&](std::ptrdiff_t first, std::ptrdiff_t last) {
+      for (auto i = static_cast<int>(first); i < last; ++i) form_row(i);
+    });
     finer = &level.matrix;
   }
   m_coarsest.compute(dense(*finer));
@@ -138,19 +161,29 @@ void GridMultigrid::cycle(const SymmetricBlockMatrix& a, std::size_t next, const
   }
   Level& coarse = m_levels[next];
   a.forward_sweep_from_zero(b, x, coarse.finer_residual);
-  // Restriction P^T r, then prolongation x += P x_c, both through P's rows.
-  coarse.b.setZero(3 * static_cast<Eigen::Index>(coarse.matrix.rows()));
-  for (Eigen::Index i = 0; i < a.rows(); ++i)
-    for (int p = coarse.parent_start[static_cast<std::size_t>(i)];
-         p < coarse.parent_start[static_cast<std::size_t>(i) + 1]; ++p)
-      particle(coarse.b, coarse.parent[static_cast<std::size_t>(p)]) +=
-          coarse.weight[static_cast<std::size_t>(p)] * particle(coarse.finer_residual, i);
+  // Restriction P^T r through P's columns, then prolongation x += P x_c through its rows: each
+  // a gather per node, split among threads.
+  coarse.b.resize(3 * static_cast<Eigen::Index>(coarse.matrix.rows()));
+  parallel_for(coarse.matrix.rows(), threaded_particles_from,
+               [&](std::ptrdiff_t first, std::ptrdiff_t last) {
+                 for (std::ptrdiff_t c = first; c < last; ++c) {
+                   Vec3 sum = Vec3::Zero();
+                   for (int k = coarse.child_start[static_cast<std::size_t>(c)];
+                        k < coarse.child_start[static_cast<std::size_t>(c) + 1]; ++k)
+                     sum +=
+                         coarse.child_weight[static_cast<std::size_t>(k)] *
+                         particle(coarse.finer_residual, coarse.child[static_cast<std::size_t>(k)]);
+                   particle(coarse.b, c) = sum;
+                 }
+               });
   cycle(coarse.matrix, next + 1, coarse.b, coarse.x);
-  for (Eigen::Index i = 0; i < a.rows(); ++i)
-    for (int p = coarse.parent_start[static_cast<std::size_t>(i)];
-         p < coarse.parent_start[static_cast<std::size_t>(i) + 1]; ++p)
-      particle(x, i) += coarse.weight[static_cast<std::size_t>(p)] *
-                        particle(coarse.x, coarse.parent[static_cast<std::size_t>(p)]);
+  parallel_for(a.rows(), threaded_particles_from, [&](std::ptrdiff_t first, std::ptrdiff_t last) {
+    for (std::ptrdiff_t i = first; i < last; ++i)
+      for (int p = coarse.parent_start[static_cast<std::size_t>(i)];
+           p < coarse.parent_start[static_cast<std::size_t>(i) + 1]; ++p)
+        particle(x, i) += coarse.weight[static_cast<std::size_t>(p)] *
+                          particle(coarse.x, coarse.parent[static_cast<std::size_t>(p)]);
+  });
   a.backward_sweep(b, x, coarse.finer_residual);  // the residual is restricted: its storage free
 }
 

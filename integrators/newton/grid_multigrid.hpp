@@ -70,6 +70,10 @@ class GridMultigrid {
     // k in [parent_start[i], parent_start[i + 1]).
     std::vector<int> parent_start, parent;
     std::vector<double> weight;
+    // P's columns: coarse node c takes child[k] with child_weight[k],
+    // k in [child_start[c], child_start[c + 1]), children ascending.
+    std::vector<int> child_start, child;
+    std::vector<double> child_weight;
     // Stored coarse block k sums galerkin[galerkin_start[k]] to
     // galerkin[galerkin_start[k + 1] - 1].
     std::vector<GalerkinTerm> galerkin;

@@ -1,8 +1,10 @@
 #include "integrators/newton/incremental_potential.hpp"
 
+#include <array>
 #include <cmath>
 
 #include "core/forces/forces.hpp"
+#include "core/parallel/fixed_block_sum.hpp"
 
 namespace drape {
 
@@ -29,23 +31,29 @@ void IncrementalPotential::freeze_damping(ConstVecRef z) {
   const SpringSet& springs = m_system.cloth().springs;
   const auto x = z.head(z.size() / 2);
   m_directions.resize(static_cast<std::size_t>(springs.size()));
-  for (Eigen::Index e = 0; e < springs.size(); ++e) {
-    const Vec3 d = particle(x, springs.second[e]) - particle(x, springs.first[e]);
-    const double length = d.norm();
-    // The damping force of forces.hpp is zero on a degenerate spring: so is its dissipation.
-    m_directions[static_cast<std::size_t>(e)] =
-        length < degenerate_length ? Vec3::Zero() : Vec3(d / length);
-  }
+  parallel_for(springs.size(), threaded_particles_from,
+               [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+                 for (Eigen::Index e = begin; e < end; ++e) {
+                   const Vec3 d = particle(x, springs.second[e]) - particle(x, springs.first[e]);
+                   const double length = d.norm();
+                   // The damping force of forces.hpp is zero on a degenerate spring: so is its
+                   // dissipation.
+                   m_directions[static_cast<std::size_t>(e)] =
+                       length < degenerate_length ? Vec3::Zero() : Vec3(d / length);
+                 }
+               });
 }
 
 void IncrementalPotential::state_of(ConstVecRef v, VecRef z) const {
   const Eigen::Index n3 = z.size() / 2;
   const auto& fixed = m_system.constraints().mask();
-  for (Eigen::Index i = 0; i < n3 / 3; ++i) {
-    if (fixed[static_cast<std::size_t>(i)]) continue;
-    particle(z.tail(n3), i) = particle(v, i);
-    particle(z.head(n3), i) = particle(m_a.head(n3), i) + m_gamma * particle(v, i);
-  }
+  parallel_for(n3 / 3, threaded_particles_from, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+    for (Eigen::Index i = begin; i < end; ++i) {
+      if (fixed[static_cast<std::size_t>(i)]) continue;
+      particle(z.tail(n3), i) = particle(v, i);
+      particle(z.head(n3), i) = particle(m_a.head(n3), i) + m_gamma * particle(v, i);
+    }
+  });
 }
 
 double IncrementalPotential::value(ConstVecRef z) const {
@@ -58,12 +66,18 @@ double IncrementalPotential::value(ConstVecRef z, double& magnitude) const {
   const auto x = z.head(n3), v = z.tail(n3);
   const auto& fixed = m_system.constraints().mask();
   const double mass = m_system.particle_mass();
-  double inertia = 0.0, air = 0.0;
-  for (Eigen::Index i = 0; i < n3 / 3; ++i) {
-    if (fixed[static_cast<std::size_t>(i)]) continue;
-    inertia += (particle(v, i) - particle(m_a.tail(n3), i)).squaredNorm();
-    air += particle(v, i).squaredNorm();
-  }
+  // The sums over particles and springs are fixed-block sums (core/parallel): the same bits on
+  // any number of threads.
+  const auto [inertia, air] = fixed_block_sums<2>(
+      n3 / 3, particles_per_block, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+        std::array<double, 2> sums{0.0, 0.0};
+        for (Eigen::Index i = begin; i < end; ++i) {
+          if (fixed[static_cast<std::size_t>(i)]) continue;
+          sums[0] += (particle(v, i) - particle(m_a.tail(n3), i)).squaredNorm();
+          sums[1] += particle(v, i).squaredNorm();
+        }
+        return sums;
+      });
   const EnergyBreakdown u = m_system.energy(x, v);
   double e = 0.5 * mass * inertia;
   magnitude = e;
@@ -73,11 +87,17 @@ double IncrementalPotential::value(ConstVecRef z, double& magnitude) const {
     const SpringSet& springs = m_system.cloth().springs;
     const double c = m_system.cloth().params.damping_spring;
     double dissipation = 0.0;
-    for (Eigen::Index s = 0; c > 0.0 && s < springs.size(); ++s) {
-      const double rate = (particle(v, springs.second[s]) - particle(v, springs.first[s]))
-                              .dot(m_directions[static_cast<std::size_t>(s)]);
-      dissipation += rate * rate;
-    }
+    if (c > 0.0)
+      dissipation = fixed_block_sum(
+          springs.size(), springs_per_block, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+            double sum = 0.0;
+            for (Eigen::Index s = begin; s < end; ++s) {
+              const double rate = (particle(v, springs.second[s]) - particle(v, springs.first[s]))
+                                      .dot(m_directions[static_cast<std::size_t>(s)]);
+              sum += rate * rate;
+            }
+            return sum;
+          });
     e += m_gamma * 0.5 * c * dissipation;
     magnitude += m_gamma * 0.5 * c * dissipation;
   }

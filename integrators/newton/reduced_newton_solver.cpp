@@ -2,7 +2,10 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
+
+#include "core/parallel/fixed_block_sum.hpp"
 
 namespace drape {
 
@@ -72,7 +75,7 @@ void ReducedNewtonSolver::assemble_blocks(FinishRow finish_row) {
     }
     return sum;
   };
-  for (int i = 0; i < m_matrix.rows(); ++i) {
+  const auto assemble_row = [&](int i) {
     const auto row = static_cast<std::size_t>(i);
     const int start = m_matrix.row_start(i), end = m_matrix.row_start(i + 1);
     if (fixed[row]) {
@@ -94,7 +97,12 @@ void ReducedNewtonSolver::assemble_blocks(FinishRow finish_row) {
       }
     }
     finish_row(i);
-  }
+  };
+  // Each row writes only its own blocks and diagonal inverse: rows split among threads.
+  parallel_for(m_matrix.rows(), threaded_particles_from,
+               [&](std::ptrdiff_t first, std::ptrdiff_t last) {
+                 for (auto i = static_cast<int>(first); i < last; ++i) assemble_row(i);
+               });
 }
 
 std::vector<std::vector<int>> ReducedNewtonSolver::build_gather() {
@@ -279,7 +287,7 @@ bool ReducedNewtonSolver::solve_reduced(const Eigen::VectorXd& b, Eigen::VectorX
     z_v.setZero(b.size());
     m_residual = b;
   }
-  const bool converged = conjugate_gradients(b.norm(), z_v, tolerance);
+  const bool converged = conjugate_gradients(block_norm(b), z_v, tolerance);
   if (start == CgStart::projected) {
     std::swap(m_history[0], m_history[1]);
     m_history[0] = z_v;
@@ -328,21 +336,35 @@ void ReducedNewtonSolver::start_projected(const Eigen::VectorXd& b, Eigen::Vecto
 bool ReducedNewtonSolver::conjugate_gradients(double b_norm, Eigen::VectorXd& z_v,
                                               double tolerance) {
   // Preconditioned conjugate gradients (Shewchuk 1994, B2) from z_v, m_residual = b - S z_v,
-  // stopping at |b - S z| <= tolerance |b| (at once for b = 0, whose start is then 0).
-  if (m_residual.norm() <= tolerance * b_norm) return true;
+  // stopping at |b - S z| <= tolerance |b| (at once for b = 0, whose start is then 0). Every
+  // dot product and norm is a fixed-block sum (core/parallel/fixed_block_sum.hpp) and each
+  // iteration's updates of z and r share one pass with |r|: the same bits on any number of
+  // threads.
+  if (block_norm(m_residual) <= tolerance * b_norm) return true;
   precondition(m_residual, m_preconditioned);
   m_direction = m_preconditioned;
-  double rho = m_residual.dot(m_preconditioned);
+  double rho = block_dot(m_residual, m_preconditioned);
   for (int k = 0; k < m_max_iterations; ++k) {
     m_matrix.multiply(m_direction, m_product);
-    const double alpha = rho / m_direction.dot(m_product);
-    z_v += alpha * m_direction;
-    m_residual -= alpha * m_product;
+    const double alpha = rho / block_dot(m_direction, m_product);
+    const double residual_norm = std::sqrt(fixed_block_sum(
+        z_v.size(), entries_per_block, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+          const Eigen::Index n = end - begin;
+          z_v.segment(begin, n) += alpha * m_direction.segment(begin, n);
+          m_residual.segment(begin, n) -= alpha * m_product.segment(begin, n);
+          return m_residual.segment(begin, n).squaredNorm();
+        }));
     ++m_iterations;
-    if (m_residual.norm() <= tolerance * b_norm) return true;
+    if (residual_norm <= tolerance * b_norm) return true;
     precondition(m_residual, m_preconditioned);
-    const double rho_next = m_residual.dot(m_preconditioned);
-    m_direction = m_preconditioned + (rho_next / rho) * m_direction;
+    const double rho_next = block_dot(m_residual, m_preconditioned);
+    const double beta = rho_next / rho;
+    parallel_for(z_v.size(), 3 * threaded_particles_from,
+                 [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+                   const Eigen::Index n = end - begin;
+                   m_direction.segment(begin, n) =
+                       m_preconditioned.segment(begin, n) + beta * m_direction.segment(begin, n);
+                 });
     rho = rho_next;
   }
   return false;

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/parallel/parallel_for.hpp"
+
 namespace drape::detail {
 
 namespace {
@@ -67,20 +69,53 @@ int SymmetricBlockMatrix::find(int i, int j) const {
 }
 
 void SymmetricBlockMatrix::multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const {
+  out.resize(p.size());
+  parallel_for(rows(), threaded_particles_from, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+    multiply_rows(p, out, static_cast<int>(begin), static_cast<int>(end));
+  });
+}
+
+void SymmetricBlockMatrix::multiply_rows(const Eigen::VectorXd& p, Eigen::VectorXd& out,
+                                         int begin, int end) const {
   // Row i gathers its stored blocks' products and scatters each block's transpose (itself) to
-  // the rows right of it, which have not been reached yet and are still in the cache.
-  out.setZero(p.size());
-  for (int i = 0; i < rows(); ++i) {
-    const int start = row_start(i), end = row_start(i + 1);
+  // the rows right of it, which have not been reached yet and are still in the cache. A row r
+  // of out sums, in this order, the transposed blocks of the rows above it, ascending, then its
+  // own row: rows [begin, end) first take those of the rows above `begin`, then run the loop,
+  // scattering only inside [begin, end), so that every row's sum is the one-thread loop's
+  // whatever the split.
+  out.segment(3 * static_cast<Eigen::Index>(begin), 3 * static_cast<Eigen::Index>(end - begin))
+      .setZero();
+  add_from_above(p, out, begin, end, 1.0);
+  for (int i = begin; i < end; ++i) {
+    const int start = row_start(i), stop = row_start(i + 1);
     const Vec3 p_i = particle(p, i);
     Vec3 sum = times(m_blocks[static_cast<std::size_t>(start)], p_i);
-    for (int k = start + 1; k < end; ++k) {
+    for (int k = start + 1; k < stop; ++k) {
       const PackedBlock& block = m_blocks[static_cast<std::size_t>(k)];
       sum.noalias() += times(block, Vec3(particle(p, column(k))));
-      particle(out, column(k)) += times(block, p_i);
+      if (column(k) < end) particle(out, column(k)) += times(block, p_i);
     }
     particle(out, i) += sum;
   }
+}
+
+void SymmetricBlockMatrix::add_from_above(const Eigen::VectorXd& v, Eigen::VectorXd& out,
+                                          int begin, int end, double sign) const {
+  for (int j = std::max(0, begin - m_upper_reach); j < begin; ++j) {
+    const Vec3 v_j = particle(v, j);
+    for (int k = row_start(j) + 1; k < row_start(j + 1); ++k)
+      if (column(k) >= begin && column(k) < end)
+        particle(out, column(k)) += sign * times(m_blocks[static_cast<std::size_t>(k)], v_j);
+  }
+}
+
+void SymmetricBlockMatrix::add_from_below(const Eigen::VectorXd& v, Eigen::VectorXd& out,
+                                          int begin, int end, double sign) const {
+  for (int r = std::max(begin, end - m_upper_reach); r < end; ++r)
+    for (int k = row_start(r) + 1; k < row_start(r + 1); ++k)
+      if (column(k) >= end)
+        particle(out, r) += sign * times(m_blocks[static_cast<std::size_t>(k)],
+                                         Vec3(particle(v, column(k))));
 }
 
 void SymmetricBlockMatrix::finish_row(int i) {
@@ -89,34 +124,75 @@ void SymmetricBlockMatrix::finish_row(int i) {
 }
 
 void SymmetricBlockMatrix::finish_rows() {
-  for (int i = 0; i < rows(); ++i) finish_row(i);
+  parallel_for(rows(), threaded_particles_from, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+    for (auto i = static_cast<int>(begin); i < end; ++i) finish_row(i);
+  });
 }
 
 void SymmetricBlockMatrix::precondition_jacobi(const Eigen::VectorXd& r,
                                                Eigen::VectorXd& out) const {
   out.resize(r.size());
-  for (int i = 0; i < rows(); ++i)
-    particle(out, i) = times(m_diagonal_inverse[static_cast<std::size_t>(i)], Vec3(particle(r, i)));
+  parallel_for(rows(), threaded_particles_from, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+    for (auto i = static_cast<int>(begin); i < end; ++i)
+      particle(out, i) =
+          times(m_diagonal_inverse[static_cast<std::size_t>(i)], Vec3(particle(r, i)));
+  });
+}
+
+void SymmetricBlockMatrix::set_sweep_block_rows(int rows) {
+  if (rows < 1) throw std::logic_error("SymmetricBlockMatrix: a sweep block of no rows");
+  m_sweep_block_rows = rows;
+}
+
+int SymmetricBlockMatrix::sweep_blocks() const {
+  return (rows() + m_sweep_block_rows - 1) / m_sweep_block_rows;
+}
+
+template <class Body>
+void SymmetricBlockMatrix::for_each_sweep_block(Body&& body) const {
+  parallel_for(sweep_blocks(), 2, [&](std::ptrdiff_t first, std::ptrdiff_t last) {
+    for (auto block = static_cast<int>(first); block < last; ++block)
+      body(block * m_sweep_block_rows, std::min(rows(), (block + 1) * m_sweep_block_rows));
+  });
 }
 
 void SymmetricBlockMatrix::backward_sweep(const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                           Eigen::VectorXd& scratch) const {
   // Row i needs L_i x_old = sum over the rows j < i coupled to it of U_ji x_j, x_j not yet
   // updated: row j scatters U_ji x_j to `scratch` m_upper_reach rows before the sweep reaches
-  // i, while every x_j it reads is still old and every row it writes is still to come.
-  scratch.setZero(b.size());
+  // i, while every x_j it reads is still old and every row it writes is still to come. Rows
+  // coupled to another sweep block take that block's old x first, before any block moves.
+  scratch.resize(b.size());
+  const bool one_block = sweep_blocks() == 1;
+  if (!one_block)
+    for_each_sweep_block([&](int begin, int end) {
+      scratch.segment(3 * static_cast<Eigen::Index>(begin),
+                      3 * static_cast<Eigen::Index>(end - begin))
+          .setZero();
+      add_from_above(x, scratch, begin, end, 1.0);
+      add_from_below(x, scratch, begin, end, 1.0);
+    });
+  for_each_sweep_block([&](int begin, int end) {
+    if (one_block) scratch.setZero();
+    backward_sweep_rows(b, x, scratch, begin, end);
+  });
+}
+
+void SymmetricBlockMatrix::backward_sweep_rows(const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                               Eigen::VectorXd& scratch, int begin,
+                                               int end) const {
   const PackedBlock* blocks = m_blocks.data();
-  for (int i = rows() - 1 + m_upper_reach; i >= 0; --i) {
+  for (int i = end - 1 + m_upper_reach; i >= begin; --i) {
     const int j = i - m_upper_reach;
-    if (j >= 0 && j < rows()) {
+    if (j >= begin && j < end) {
       prefetch_row(*this, j - rows_ahead);
       const Vec3 x_j = particle(x, j);
-      for (int k = row_start(j) + 1; k < row_start(j + 1); ++k)
+      for (int k = row_start(j) + 1; k < row_start(j + 1) && column(k) < end; ++k)
         particle(scratch, column(k)) += times(blocks[k], x_j);
     }
-    if (i >= rows()) continue;
+    if (i >= end) continue;
     Vec3 sum = particle(b, i) - particle(scratch, i);
-    for (int k = row_start(i) + 1; k < row_start(i + 1); ++k)
+    for (int k = row_start(i) + 1; k < row_start(i + 1) && column(k) < end; ++k)
       sum.noalias() -= times(blocks[k], Vec3(particle(x, column(k))));
     particle(x, i) = times(m_diagonal_inverse[static_cast<std::size_t>(i)], sum);
   }
@@ -124,25 +200,42 @@ void SymmetricBlockMatrix::backward_sweep(const Eigen::VectorXd& b, Eigen::Vecto
 
 void SymmetricBlockMatrix::forward_sweep_from_zero(const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                                    Eigen::VectorXd& residual) const {
+  // From x = 0 the other blocks' x are zero during the sweep, so each block sweeps alone; the
+  // residual's couplings across blocks are added once every block's x is final.
+  x.resize(b.size());
+  residual.resize(b.size());
+  for_each_sweep_block(
+      [&](int begin, int end) { forward_sweep_rows(b, x, residual, begin, end); });
+  if (sweep_blocks() > 1)
+    for_each_sweep_block([&](int begin, int end) {
+      add_from_above(x, residual, begin, end, -1.0);
+      add_from_below(x, residual, begin, end, -1.0);
+    });
+}
+
+void SymmetricBlockMatrix::forward_sweep_rows(const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                              Eigen::VectorXd& residual, int begin,
+                                              int end) const {
   // x starts as b; row i, when reached, holds b_i - L_i x and becomes x_i, then scatters its
   // blocks' U_ij x_i (L_ji x_i) to the rows right of it. Row r of b - A x = -U x needs x up to
   // row r + m_upper_reach: it is formed that many rows behind the sweep, while row r's blocks
   // are still in cache, instead of in a second pass.
-  x = b;
-  residual.resize(b.size());
+  const Eigen::Index first = 3 * static_cast<Eigen::Index>(begin);
+  const Eigen::Index count = 3 * static_cast<Eigen::Index>(end - begin);
+  x.segment(first, count) = b.segment(first, count);
   const PackedBlock* blocks = m_blocks.data();
-  for (int i = 0; i < rows() + m_upper_reach; ++i) {
-    if (i < rows()) {
+  for (int i = begin; i < end + m_upper_reach; ++i) {
+    if (i < end) {
       prefetch_row(*this, i + rows_ahead);
       const Vec3 x_i = times(m_diagonal_inverse[static_cast<std::size_t>(i)], Vec3(particle(x, i)));
       particle(x, i) = x_i;
-      for (int k = row_start(i) + 1; k < row_start(i + 1); ++k)
+      for (int k = row_start(i) + 1; k < row_start(i + 1) && column(k) < end; ++k)
         particle(x, column(k)) -= times(blocks[k], x_i);
     }
     const int r = i - m_upper_reach;
-    if (r < 0) continue;
+    if (r < begin) continue;
     Vec3 sum = Vec3::Zero();
-    for (int k = row_start(r) + 1; k < row_start(r + 1); ++k)
+    for (int k = row_start(r) + 1; k < row_start(r + 1) && column(k) < end; ++k)
       sum.noalias() -= times(blocks[k], Vec3(particle(x, column(k))));
     particle(residual, r) = sum;
   }

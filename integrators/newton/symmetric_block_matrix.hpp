@@ -17,6 +17,18 @@
 // blocks the conversions cost more than the bytes the copy saved, and the copy was one more array
 // to write a step ("S stored once").
 //
+// On threads (docs/performance/threads.md), with the same bits for any number of them: the
+// product splits its rows among the threads, each row summing its terms in the one-thread
+// order; the sweeps run over fixed blocks of 2048 rows, Gauss-Seidel within a block
+// and Jacobi between blocks (each block reads the others' x from before the sweep): the
+// "hybrid Gauss-Seidel" of Baker, Falgout, Kolev and Yang 2011 ("Multigrid smoothers for
+// ultraparallel computing", SIAM J. Sci. Comput. 33(5)), here with blocks fixed by the matrix,
+// not by the threads. The backward sweep is still the forward one's adjoint (its M is D + U
+// within blocks, the transpose of the forward D + L), so the cycle stays symmetric; it stays an
+// A-norm contraction while M + M' - A = D - C (C the couplings between blocks) is positive
+// definite, which holds for S, whose couplings are the springs' -C_e with C_e positive
+// semi-definite. A matrix of at most 2048 rows is one block: the sweeps of before.
+//
 // A row is finished (its diagonal inverted) by finish_row() as soon as its blocks hold their
 // values, so that an assembly writing row by row does it while the row is in cache instead of in
 // one more pass over the matrix (docs/journal/2026-11-27-assembling-s.md).
@@ -72,7 +84,8 @@ class SymmetricBlockMatrix {
   std::vector<PackedBlock>& blocks() { return m_blocks; }
   const std::vector<PackedBlock>& blocks() const { return m_blocks; }
 
-  /// out = A p.
+  /// out = A p, on threads for a cloth's worth of rows (core/parallel), the same bits for any
+  /// number of them.
   void multiply(const Eigen::VectorXd& p, Eigen::VectorXd& out) const;
   /// Inverts row i's diagonal block (for precondition_jacobi() and the sweeps; it must be
   /// invertible, positive definite for an SPD matrix). Needs row i's diagonal block final.
@@ -81,20 +94,47 @@ class SymmetricBlockMatrix {
   void finish_rows();
   /// out = D^-1 r, D the block diagonal (the symmetric part of each block's inverse).
   void precondition_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& out) const;
+  /// Rows of a sweep block (at least 1; 2048 unless set): each block is swept on one thread.
+  void set_sweep_block_rows(int rows);
   /// One block Gauss-Seidel sweep on A x = b with rows descending:
-  /// x = (D + U)^-1 (b - L x), L and U the blocks left and right of the diagonal, D^-1 the
+  /// x = (D + U)^-1 (b - L x), L and U the blocks left and right of the diagonal within a sweep
+  /// block (those between sweep blocks act on the old x, with L), D^-1 the
   /// symmetric parts of the diagonal blocks' inverses. `scratch` is overwritten (L x, gathered
   /// as the sweep goes) and must not alias `b` or `x`.
   void backward_sweep(const Eigen::VectorXd& b, Eigen::VectorXd& x,
                       Eigen::VectorXd& scratch) const;
-  /// The forward sweep (rows ascending) from x = 0, x = (D + L)^-1 b, and the residual it
-  /// leaves, b - A x = -U x (A with the diagonal the sweeps see): together one pass
+  /// The forward sweep (rows ascending) from x = 0, x = (D + L)^-1 b (L within sweep blocks),
+  /// and the residual it leaves, b - A x = -(U + C) x (C the couplings between sweep blocks; A
+  /// with the diagonal the sweeps see): together one pass
   /// over the blocks instead of a sweep and a product, each row's residual formed as soon as
   /// the x it reads is final. `residual` must not alias `b` or `x`.
   void forward_sweep_from_zero(const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                Eigen::VectorXd& residual) const;
 
  private:
+  /// Rows [begin, end) of out = A p (out's other rows untouched).
+  void multiply_rows(const Eigen::VectorXd& p, Eigen::VectorXd& out, int begin, int end) const;
+  /// out's rows [begin, end) += sign times the stored blocks of the rows above `begin` that
+  /// reach them (their lower part), applied to v, rows ascending.
+  void add_from_above(const Eigen::VectorXd& v, Eigen::VectorXd& out, int begin, int end,
+                      double sign) const;
+  /// out's rows [begin, end) += sign times their stored blocks reaching past `end`, applied
+  /// to v.
+  void add_from_below(const Eigen::VectorXd& v, Eigen::VectorXd& out, int begin, int end,
+                      double sign) const;
+  int sweep_blocks() const;
+  /// body(begin, end) for every sweep block's rows, the blocks split among the threads.
+  template <class Body>
+  void for_each_sweep_block(Body&& body) const;
+  /// The sweeps within rows [begin, end), coupling to no row outside.
+  void backward_sweep_rows(const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                           Eigen::VectorXd& scratch, int begin, int end) const;
+  void forward_sweep_rows(const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                          Eigen::VectorXd& residual, int begin, int end) const;
+
+  // Rows a sweep block holds: by default as many as a loop needs to be worth threads
+  // (threaded_particles_from, core/parallel).
+  int m_sweep_block_rows = 2048;
   std::vector<int> m_row_start{0}, m_column;  // row_start of an empty matrix: rows() = 0
   int m_upper_reach = 0;  // the largest column - row of a stored block
   std::vector<PackedBlock> m_blocks;

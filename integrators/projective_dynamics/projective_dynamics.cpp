@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/parallel/fixed_block_sum.hpp"
 #include "integrators/acceleration/chebyshev.hpp"
 
 namespace drape {
@@ -92,39 +93,50 @@ double ProjectiveDynamics::step(double t_stop) {
     m_system.forces(x, v, m_force, without_collision);
     ++m_counters.rhs_evals;
     // -grad E = F(x, (x - x_n)/h) - M/h^2 (x - x_n - h v_n), gathered in the factor's order.
-    bool new_contact = false;
-    for (std::ptrdiff_t s = 0; s < free_count; ++s) {
-      const int i = slots[static_cast<std::size_t>(s)];
-      Vec3 r = particle(m_force, i) - inertia_weight * (particle(x, i) - particle(m_inertia, i));
-      if (with_contact) {
-        const Vec3 push = collision.force(i, particle(x, i));
-        if (push.squaredNorm() > 0.0) {
-          r += push;
-          if (!m_contact[static_cast<std::size_t>(i)])
-            m_contact[static_cast<std::size_t>(i)] = 1, new_contact = true;
-        }
-      }
-      Eigen::Map<Vec3>(m_z.data() + 3 * s) = r;
-    }
-    if (new_contact) {
+    // The local step, per particle on threads (core/parallel); a new contact is counted as a
+    // fixed-block sum, whose value does not depend on the order anyway.
+    const double new_contacts = fixed_block_sum(
+        free_count, particles_per_block, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+          double count = 0.0;
+          for (std::ptrdiff_t s = begin; s < end; ++s) {
+            const int i = slots[static_cast<std::size_t>(s)];
+            Vec3 r =
+                particle(m_force, i) - inertia_weight * (particle(x, i) - particle(m_inertia, i));
+            if (with_contact) {
+              const Vec3 push = collision.force(i, particle(x, i));
+              if (push.squaredNorm() > 0.0) {
+                r += push;
+                if (!m_contact[static_cast<std::size_t>(i)])
+                  m_contact[static_cast<std::size_t>(i)] = 1, count += 1.0;
+              }
+            }
+            Eigen::Map<Vec3>(m_z.data() + 3 * s) = r;
+          }
+          return count;
+        });
+    if (new_contacts > 0.0) {
       m_matrix.refactor(m_contact);
       ++m_counters.jacobian_setups;
     }
     m_matrix.solve_in_place(m_z.data());
     if (m_chebyshev) omega = chebyshev_omega(k + 1, m_rho, omega);
-    double size = 0.0;
-    for (std::ptrdiff_t s = 0; s < free_count; ++s) {
-      const int i = slots[static_cast<std::size_t>(s)];
-      const Eigen::Map<const Vec3> dx(m_z.data() + 3 * s);
-      size += dx.squaredNorm();
-      Vec3 next = particle(x, i) + dx;
-      if (m_chebyshev) {
-        if (k > 0) next = omega * (next - particle(m_previous, i)) + particle(m_previous, i);
-        particle(m_previous, i) = particle(x, i);
-      }
-      particle(x, i) = next;
-      particle(v, i) = (next - particle(m_start, i)) / h;
-    }
+    const double size = fixed_block_sum(
+        free_count, particles_per_block, [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
+          double sum = 0.0;
+          for (std::ptrdiff_t s = begin; s < end; ++s) {
+            const int i = slots[static_cast<std::size_t>(s)];
+            const Eigen::Map<const Vec3> dx(m_z.data() + 3 * s);
+            sum += dx.squaredNorm();
+            Vec3 next = particle(x, i) + dx;
+            if (m_chebyshev) {
+              if (k > 0) next = omega * (next - particle(m_previous, i)) + particle(m_previous, i);
+              particle(m_previous, i) = particle(x, i);
+            }
+            particle(x, i) = next;
+            particle(v, i) = (next - particle(m_start, i)) / h;
+          }
+          return sum;
+        });
     if (!std::isfinite(size))
       throw IntegratorFailure("pd_not_finite", "projective-dynamics: a non-finite iterate at t = " +
                                                    std::to_string(t_next));

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 
 #include "core/model/cloth_system.hpp"
+#include "core/parallel/parallel_for.hpp"
 #include "core/dummy/dummy_sources.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -67,6 +68,55 @@ TEST(ClothSystem, SparseJacobiansEqualTheProducts) {
     EXPECT_LT((kx * dx + dvm * dv - jv).norm(), 1e-12 * jv.norm());
     EXPECT_TRUE(jv.head<3>().isZero()) << "fixed rows are zero";
   }
+}
+
+// A 50 x 50 cloth (2500 particles, above threaded_particles_from): the blocks of every spring
+// and particle are the same bits on 1, 2 and 3 threads, and applied in the pair pattern they
+// are the Jacobian products.
+TEST(ClothSystem, JacobianBlocksAreTheProductsOnAnyNumberOfThreads) {
+  const int before = thread_count();
+  ClothParams p = testing::small_cloth(50, 50);
+  p.damping_spring = 0.05;
+  p.damping_air = 0.01;
+  const ClothSystem s(build_cloth(p), nullptr, ForceParams{});
+  const Eigen::VectorXd x = jitter(s.cloth().rest_positions, 0.006, 15);
+  const Eigen::VectorXd v = jitter(Eigen::VectorXd::Zero(x.size()), 0.3, 16);
+  const Eigen::VectorXd dx = jitter(Eigen::VectorXd::Zero(x.size()), 1.0, 17);
+  const Eigen::VectorXd dv = jitter(Eigen::VectorXd::Zero(x.size()), 1.0, 18);
+  const ConstVecMap xm(x.data(), x.size()), vm(v.data(), v.size());
+  for (const bool definite : {false, true}) {
+    JacobianBlocks one;
+    set_thread_count(1);
+    s.force_jacobian_blocks(xm, vm, definite, ForceSplit::all, one);
+    for (const int threads : {2, 3}) {
+      set_thread_count(threads);
+      JacobianBlocks blocks;
+      s.force_jacobian_blocks(xm, vm, definite, ForceSplit::all, blocks);
+      EXPECT_EQ(blocks.spring_x, one.spring_x) << threads << " threads";
+      EXPECT_EQ(blocks.spring_v, one.spring_v) << threads << " threads";
+      EXPECT_EQ(blocks.particle_x, one.particle_x) << threads << " threads";
+      EXPECT_EQ(blocks.particle_v, one.particle_v) << threads << " threads";
+    }
+    Eigen::VectorXd product(x.size());
+    for (int i = 0; i < s.num_particles(); ++i)
+      particle(product, i) = one.particle_x[static_cast<std::size_t>(i)] * particle(dx, i) +
+                             one.particle_v[static_cast<std::size_t>(i)] * particle(dv, i);
+    const SpringSet& springs = s.cloth().springs;
+    for (Eigen::Index e = 0; e < springs.size(); ++e) {
+      const int i = springs.first[e], j = springs.second[e];
+      const auto k = static_cast<std::size_t>(e);
+      const Vec3 df = one.spring_x[k] * (particle(dx, j) - particle(dx, i)) +
+                      one.spring_v[k] * (particle(dv, j) - particle(dv, i));
+      particle(product, i) += df;
+      particle(product, j) -= df;
+    }
+    Eigen::VectorXd jv(x.size());
+    s.force_jacobian_times(xm, vm, ConstVecMap(dx.data(), dx.size()),
+                           ConstVecMap(dv.data(), dv.size()), VecMap(jv.data(), jv.size()),
+                           definite);
+    EXPECT_LT((product - jv).norm(), 1e-12 * jv.norm());
+  }
+  set_thread_count(before);
 }
 
 TEST(ClothSystem, InternalForcesConserveMomentum) {

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <stdexcept>
 
+#include "core/parallel/parallel_for.hpp"
 #include "integrators/newton/symmetric_block_matrix.hpp"
 #include "tests/support/grid_matrix.hpp"
 #include "tests/support/test_support.hpp"
@@ -105,12 +106,13 @@ TEST(SymmetricBlockMatrix, ProductAndSweepsMatchTheDenseMatrix) {
   EXPECT_LT((residual - (b - (d + l + u) * x)).norm(), 1e-12 * b.norm());
 }
 
-// The grid's 9-point pattern, where a row's blocks reach cols + 1 rows on: the product and the
-// sweeps' lagged passes against the dense matrix.
-TEST(SymmetricBlockMatrix, SweepsOnAGridMatchTheDenseMatrix) {
-  const int rows = 5, cols = 7;
-  const detail::SymmetricBlockMatrix a = testing::grid_matrix(rows, cols, 2);
-  const Eigen::Index n3 = 3 * rows * cols;
+// The sweeps of `a` (the grid's 9-point pattern, where a row's blocks reach cols + 1 rows on,
+// swept in blocks of `block_rows` rows) against its dense matrix: with M = D + L_in (L_in the
+// blocks below the diagonal within a sweep block; Jacobi between blocks) the forward sweep from
+// zero solves M x = b and its residual is b - A x; the backward sweep solves
+// M' x_new = b - (A - M') x_old.
+void expect_hybrid_sweeps(const detail::SymmetricBlockMatrix& a, int block_rows) {
+  const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(a.rows());
   Eigen::MatrixXd dense(n3, n3);
   Eigen::VectorXd column;
   for (Eigen::Index k = 0; k < n3; ++k) {
@@ -119,20 +121,74 @@ TEST(SymmetricBlockMatrix, SweepsOnAGridMatchTheDenseMatrix) {
   }
   EXPECT_EQ(dense, dense.transpose());
   const Eigen::MatrixXd sweeps = testing::sweep_matrix(dense);
-  Eigen::MatrixXd lower = sweeps;  // D + L
-  for (Eigen::Index i = 0; i < rows * cols; ++i)
-    lower.block(3 * i, 3 * i + 3, 3, n3 - 3 * i - 3).setZero();
-  const Eigen::MatrixXd strict_upper = sweeps - lower;
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n3, n3);  // D + L_in
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    for (Eigen::Index j = (i / block_rows) * block_rows; j <= i; ++j)
+      m.block<3, 3>(3 * i, 3 * j) = sweeps.block<3, 3>(3 * i, 3 * j);
   const Eigen::VectorXd b = testing::jitter(Eigen::VectorXd::Zero(n3), 1.0, 6);
   const Eigen::VectorXd old = testing::jitter(Eigen::VectorXd::Zero(n3), 1.0, 7);
   Eigen::VectorXd x, residual, scratch;
   a.forward_sweep_from_zero(b, x, residual);
-  EXPECT_LT((lower * x - b).norm(), 1e-12 * b.norm());
+  EXPECT_LT((m * x - b).norm(), 1e-12 * b.norm());
   EXPECT_LT((residual - (b - sweeps * x)).norm(), 1e-12 * b.norm());
   x = old;
   a.backward_sweep(b, x, scratch);
-  const Eigen::MatrixXd upper = sweeps - strict_upper.transpose();  // D + U
-  EXPECT_LT((upper * x - (b - strict_upper.transpose() * old)).norm(), 1e-12 * b.norm());
+  const Eigen::MatrixXd mt = m.transpose();
+  EXPECT_LT((mt * x - (b - (sweeps - mt) * old)).norm(), 1e-12 * b.norm());
+}
+
+TEST(SymmetricBlockMatrix, SweepsOnAGridMatchTheDenseMatrix) {
+  expect_hybrid_sweeps(testing::grid_matrix(5, 7, 2), 35);  // one block: Gauss-Seidel
+}
+
+// Sweep blocks of 8 rows on the 5 x 7 grid: blocks [0, 8), ..., [32, 35).
+TEST(SymmetricBlockMatrix, SweepsOverFixedBlocksAreHybridGaussSeidel) {
+  detail::SymmetricBlockMatrix a = testing::grid_matrix(5, 7, 2);
+  a.set_sweep_block_rows(8);
+  EXPECT_THROW(a.set_sweep_block_rows(0), std::logic_error);
+  expect_hybrid_sweeps(a, 8);
+}
+
+// On a 50 x 50 grid (2500 rows: the product splits its rows among the threads, the sweeps run
+// as two blocks): the product is the one-thread loop's (every row gathering, then scattering to
+// the rows after it) bit for bit on 1, 2 and 3 threads, and so are the sweeps.
+TEST(SymmetricBlockMatrix, ThreadsGiveTheOneThreadBits) {
+  const int before = thread_count();
+  const detail::SymmetricBlockMatrix a = testing::grid_matrix(50, 50, 4);
+  const Eigen::Index n3 = 3 * 2500;
+  const Eigen::VectorXd p = testing::jitter(Eigen::VectorXd::Zero(n3), 1.0, 10);
+  Eigen::VectorXd reference = Eigen::VectorXd::Zero(n3);
+  for (int i = 0; i < a.rows(); ++i) {
+    const Vec3 p_i = particle(p, i);
+    Vec3 sum = detail::times(a.blocks()[static_cast<std::size_t>(a.row_start(i))], p_i);
+    for (int k = a.row_start(i) + 1; k < a.row_start(i + 1); ++k) {
+      const detail::PackedBlock& block = a.blocks()[static_cast<std::size_t>(k)];
+      sum.noalias() += detail::times(block, Vec3(particle(p, a.column(k))));
+      particle(reference, a.column(k)) += detail::times(block, p_i);
+    }
+    particle(reference, i) += sum;
+  }
+  Eigen::VectorXd one_forward, one_residual, one_backward;
+  for (const int threads : {1, 2, 3}) {
+    set_thread_count(threads);
+    Eigen::VectorXd out, x, residual, scratch;
+    a.multiply(p, out);
+    EXPECT_EQ(out, reference) << threads << " threads";
+    a.forward_sweep_from_zero(p, x, residual);
+    a.backward_sweep(p, x, scratch);
+    if (threads == 1) {
+      one_forward = x;
+      one_residual = residual;
+      a.forward_sweep_from_zero(p, one_forward, one_residual);
+      one_backward = x;
+      continue;
+    }
+    EXPECT_EQ(x, one_backward) << threads << " threads";
+    a.forward_sweep_from_zero(p, x, residual);
+    EXPECT_EQ(x, one_forward) << threads << " threads";
+    EXPECT_EQ(residual, one_residual) << threads << " threads";
+  }
+  set_thread_count(before);
 }
 
 }  // namespace
