@@ -14,9 +14,12 @@ constexpr double max_step_ratio = 2.0;
 Bdf2::Bdf2(ClothSystem& system, const IntegratorOptions& options)
     : Integrator(system),
       m_dt(options.dt),
+      m_max_steps(options.max_steps),
       m_solver(system, *reduced_solve_named(linear_solver_of(options)), ForceSplit::all,
                linear_tolerance_of(options), options.max_linear_iters),
-      m_linearised(system, m_solver) {}
+      m_linearised(system, m_solver) {
+  if (uses_line_search(options)) m_converged.emplace(system, m_solver, options);
+}
 
 void Bdf2::reset(double t, const Eigen::VectorXd& y) {
   Integrator::reset(t, y);
@@ -27,15 +30,19 @@ double Bdf2::step(double t_stop) {
   const double t_next = fixed_step_end(m_dt, m_t, t_stop);
   const double h = t_next - m_t;
   m_start = m_y;
-  if (!m_has_history) {
-    m_linearised.take(m_t, h, h, nullptr, m_y, m_counters);
-  } else {
+  double gamma = h;  // without history: implicit Euler's step
+  if (m_has_history) {
     const double w = h / (m_t - m_previous_t);
     m_history_term = (w * w / (1.0 + 2.0 * w)) * (m_y - m_previous);
-    m_linearised.take(m_t, h, h * (1.0 + w) / (1.0 + 2.0 * w), &m_history_term, m_y,
-                      m_counters);
+    gamma = h * (1.0 + w) / (1.0 + 2.0 * w);
   }
-  m_system.project(t_next, positions(), velocities());
+  if (m_converged) {
+    converged_step(t_next, gamma);
+  } else {
+    m_linearised.take(m_t, h, gamma, m_has_history ? &m_history_term : nullptr, m_y,
+                      m_counters);
+    m_system.project(t_next, positions(), velocities());
+  }
   // A step cut short (a sliver before an output or event time) is not kept as the history's
   // spacing: the next full step would see a ratio w far above max_step_ratio. The older point
   // stays, so the spacing only grows and w stays at most max_step_ratio; without history the
@@ -48,16 +55,39 @@ double Bdf2::step(double t_stop) {
   return accept_fixed_step(t_next);
 }
 
+void Bdf2::converged_step(double t_next, double gamma) {
+  const auto check = [this] { check_attempts(m_max_steps); };
+  if (m_has_history) {
+    check();
+    try {
+      m_known = m_y + m_history_term;  // a = y_n + d
+      m_converged->solve(m_t, t_next, gamma, m_known, m_y, m_counters, "BDF2's equation");
+      m_system.project(t_next, positions(), velocities());
+      return;
+    } catch (const IntegratorFailure&) {
+      if (!m_converged->halves()) throw;
+    }
+    // The failed attempt stays counted; the interval is taken by converged backward Euler,
+    // halved where it fails too, and the history y_n stays valid for the next step.
+    ++m_counters.attempts;
+  }
+  m_converged->cover_backward_euler(m_t, t_next, m_y, m_counters, check);
+  // The cover counted each of its steps; accept_fixed_step counts the interval once more.
+  --m_counters.steps;
+  --m_counters.attempts;
+}
+
 IntegratorDeclaration bdf2_declaration() {
   return {"bdf2", "implicit", 2, false,
-          "Choi-Ko linearised BDF2 (one solve a step), CG or sparse LDLT on the 3N velocity "
-          "system",
+          "Choi-Ko BDF2, linearised (one solve a step, CG or sparse LDLT on the 3N velocity "
+          "system) or converged by the line-search Newton",
           {},
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<Bdf2>(system, options);
           },
-          // implicit-euler's linear-solver keys and defaults (docs/integrators/bdf2.md, "Keys")
-          {false, false, true, false, false, "pcg-multigrid", 1e-3}};
+          // implicit-euler's keys and defaults: the linear solver's and `solve`
+          // (docs/integrators/bdf2.md, "Keys")
+          {false, false, true, true, false, "pcg-multigrid", 1e-3}};
 }
 
 }  // namespace drape

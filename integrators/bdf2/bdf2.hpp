@@ -1,7 +1,10 @@
 #pragma once
+#include <optional>
+
 #include "integrators/interface/integrator.hpp"
 #include "integrators/interface/integrator_declaration.hpp"
 #include "integrators/interface/integrator_options.hpp"
+#include "integrators/newton/converged_step.hpp"
 #include "integrators/newton/linearised_step.hpp"
 #include "integrators/newton/reduced_newton_solver.hpp"
 
@@ -19,25 +22,36 @@ namespace drape {
 /// formula (Hairer, Norsett and Wanner, "Solving ODEs I", section III.5): with
 /// w = h_{n+1} / h_n, gamma = h_{n+1} (1 + w) / (1 + 2w) and d = w^2 / (1 + 2w) (y_n - y_{n-1}).
 /// Started, and restarted at every reset() (events), by one linearised implicit Euler step.
+/// With `solve` = converged, the step's equation itself, y_{n+1} = a + gamma f(y_{n+1}) with
+/// a = y_n + d, solved by the line-search Newton to ARKODE's test (ConvergedStep); the start and
+/// restarts are converged backward Euler steps, and a step whose solve fails is taken by
+/// converged backward Euler (halved as implicit-euler's, the history kept).
 /// Second order (the linearisation's error is third order locally where the definite Jacobian
 /// is the exact one), A-stable for the linear problem; one force evaluation and one Jacobian
 /// per step. Fixed particles are prescribed; then the projection of docs/model.md section 5.
 class Bdf2 final : public Integrator {
  public:
-  /// Reads dt, linear_solver, linear_tolerance and max_linear_iters from `options`.
+  /// Reads dt, max_steps, linear_solver, linear_tolerance, max_linear_iters and solve from
+  /// `options` (and with solve = converged the keys ConvergedStep reads).
   Bdf2(ClothSystem& system, const IntegratorOptions& options);
   void reset(double t, const Eigen::VectorXd& y) override;
   double step(double t_stop) override;
 
  private:
+  /// The step from m_t to t_next solved to convergence (with history: BDF2's equation with
+  /// `gamma`; without: backward Euler's), projected.
+  void converged_step(double t_next, double gamma);
+
   double m_dt;
+  long m_max_steps;
   ReducedNewtonSolver m_solver;
   LinearisedStep m_linearised;
+  std::optional<ConvergedStep> m_converged;  // solve = converged
   // The history point y_{n-1} at m_previous_t, valid while m_has_history.
   Eigen::VectorXd m_previous;
   double m_previous_t = 0.0;
   bool m_has_history = false;
-  Eigen::VectorXd m_start, m_history_term;
+  Eigen::VectorXd m_start, m_history_term, m_known;  // y_n, d, a = y_n + d
 };
 
 /// bdf2's declaration for the registry (integrator_declaration.hpp).

@@ -3,7 +3,7 @@
 
 #include "integrators/interface/integrator.hpp"
 #include "integrators/interface/integrator_options.hpp"
-#include "integrators/newton/line_search_newton.hpp"
+#include "integrators/newton/converged_step.hpp"
 #include "integrators/newton/linearised_step.hpp"
 #include "integrators/newton/reduced_newton_solver.hpp"
 
@@ -20,9 +20,8 @@ namespace drape {
 /// (`sparse-direct`). Then the projection of docs/model.md section 5. First order,
 /// unconditionally stable for the linearised problem; one force evaluation and one Jacobian
 /// per step. With `solve` = converged, backward Euler itself: the one stage
-/// z = y_n + h f(t_{n+1}, z) minimised by the line-search Newton of the ARKODE stages
-/// (line_search_newton.hpp) until its update is within ARKODE's test (weights
-/// 1 / (rtol |y_n| + atol), tolerance 0.1), which separates linearisation error from backward
+/// z = y_n + h f(t_{n+1}, z) solved to convergence by ConvergedStep (converged_step.hpp), a
+/// step whose solve fails taken as halves, which separates linearisation error from backward
 /// Euler's damping (docs/integrators/implicit-euler.md).
 class ImplicitEuler final : public Integrator {
  public:
@@ -31,18 +30,11 @@ class ImplicitEuler final : public Integrator {
   double step(double t_stop) override;
 
  private:
-  /// Backward Euler from t_start to t_next solved to convergence; throws IntegratorFailure
-  /// when it is not (the state is then unchanged).
-  void converged_step(double t_start, double t_next);
-  /// [t_start, t_end] by converged steps, halved where a solve fails (max_step_halvings).
-  void cover_converged(double t_start, double t_end, int halvings_left);
-
-  IntegratorOptions m_options;
+  long m_max_steps;
   double m_dt;
   ReducedNewtonSolver m_solver;
-  LinearisedStep m_linearised;                    // solve = linearised
-  std::optional<LineSearchNewton> m_line_search;  // solve = converged
-  Eigen::VectorXd m_increment, m_weights;
+  LinearisedStep m_linearised;                // solve = linearised
+  std::optional<ConvergedStep> m_converged;  // solve = converged
 };
 
 }  // namespace drape

@@ -1,6 +1,7 @@
 #include "integrators/interface/integrator.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace drape {
 
@@ -15,7 +16,17 @@ nlohmann::json IntegratorCounters::to_json() const {
           {"convergence_failures", convergence_failures},
           {"resets", resets},
           {"step_halvings", step_halvings},
-          {"line_search_backtracks", line_search_backtracks}};
+          {"line_search_backtracks", line_search_backtracks},
+          {"potential_decrease", potential_decrease},
+          {"potential_rises", potential_rises}};
+}
+
+void IntegratorCounters::add_potential_change(double start, double end, double magnitude) {
+  // E sums terms each rounded to about machine epsilon: a rise within 1e3 epsilon of their
+  // magnitude is noise (the tolerance of the line search and of VBD's block steps).
+  constexpr double round_off = 1e3 * std::numeric_limits<double>::epsilon();
+  potential_decrease += start - end;
+  if (end - start > round_off * magnitude) ++potential_rises;
 }
 
 void Integrator::reset(double t, const Eigen::VectorXd& y) {

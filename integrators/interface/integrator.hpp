@@ -23,7 +23,16 @@ struct IntegratorCounters {
   long resets = 0;                ///< restarts at events
   long step_halvings = 0;         ///< fixed steps retried as two halves after a solver failure
   long line_search_backtracks = 0;  ///< step halvings of the stage solves' line search
+  /// Methods that minimise backward Euler's incremental potential E (projective-dynamics, vbd,
+  /// implicit-euler and bdf2 with solve = converged; 0 for the others): the sum over steps of
+  /// E at the step's start guess minus E at its final iterate [J] (docs/outputs.md, "Counters").
+  double potential_decrease = 0.0;
+  /// Those methods' steps whose final iterate's E is above the start guess's, beyond round-off.
+  long potential_rises = 0;
 
+  /// Books one step's E at its start guess and final iterate; `magnitude` is the sum of E's
+  /// terms' absolute values (at either point), which bounds the round-off of their difference.
+  void add_potential_change(double start, double end, double magnitude);
   nlohmann::json to_json() const;
 };
 

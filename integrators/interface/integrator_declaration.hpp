@@ -53,7 +53,7 @@ struct NamedKeys {
   bool newton_stages = false;
   bool linear_solves = false;  ///< linear_tolerance and max_linear_iters
   /// `solve`, linearised or converged; a converged run reads rtol, atol, max_newton_iters,
-  /// exact_solve and max_step_halvings too (implicit-euler)
+  /// exact_solve and max_step_halvings too (implicit-euler, bdf2)
   bool solve = false;
   bool imex_split = false;  ///< imex_split (arkode-imex)
   std::string linear_solver = "pcg-reduced";  ///< `linear_solver` when not given

@@ -24,28 +24,28 @@ void reject_unused_keys(const JsonReader& in, const IntegratorOptions& o) {
   const bool arkode = named.error_tolerances;
   const bool newton = named.newton_stages;
   const bool linear = named.linear_solves;
-  const bool converged_euler = named.solve && o.solve == "converged";
+  const bool converged = named.solve && o.solve == "converged";
   const struct {
     const char* key;
     bool used;
     const char* users;
   } keys[] = {
-      {"rtol", arkode || converged_euler,
-       "the arkode-* integrators and implicit-euler with solve = converged"},
-      {"atol", arkode || converged_euler,
-       "the arkode-* integrators and implicit-euler with solve = converged"},
+      {"rtol", arkode || converged,
+       "the arkode-* integrators and, with solve = converged, implicit-euler and bdf2"},
+      {"atol", arkode || converged,
+       "the arkode-* integrators and, with solve = converged, implicit-euler and bdf2"},
       {"max_dt", o.adaptive, "adaptive runs"},
-      {"max_newton_iters", newton || converged_euler,
-       "arkode-dirk, arkode-imex and implicit-euler with solve = converged"},
+      {"max_newton_iters", newton || converged,
+       "arkode-dirk, arkode-imex and, with solve = converged, implicit-euler and bdf2"},
       {"nonlinear_solver", newton, "arkode-dirk and arkode-imex"},
-      {"solve", named.solve, "implicit-euler"},
+      {"solve", named.solve, "implicit-euler and bdf2"},
       {"exact_solve", uses_line_search(o),
-       "arkode-dirk and arkode-imex with nonlinear_solver = line-search and implicit-euler with "
-       "solve = converged"},
+       "arkode-dirk and arkode-imex with nonlinear_solver = line-search and, with "
+       "solve = converged, implicit-euler and bdf2"},
       {"imex_split", named.imex_split, "arkode-imex"},
-      {"max_step_halvings", (newton && !o.adaptive) || converged_euler,
+      {"max_step_halvings", (newton && !o.adaptive) || converged,
        "fixed-step arkode-dirk and arkode-imex (adaptive runs shrink a failed step themselves) "
-       "and implicit-euler with solve = converged"},
+       "and, with solve = converged, implicit-euler and bdf2"},
       {"linear_tolerance", linear, "implicit-euler, bdf2, arkode-dirk and arkode-imex"},
       {"max_linear_iters", linear, "implicit-euler, bdf2, arkode-dirk and arkode-imex"},
   };

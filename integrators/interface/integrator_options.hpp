@@ -30,8 +30,8 @@ struct IntegratorOptions {
   /// damping; the collision force explicit) or `springs+collision` (the contact implicit too);
   /// gravity and air damping stay explicit. "" = springs (docs/model.md section 5).
   std::string imex_split;
-  /// implicit-euler: `linearised` (one Newton step, Baraff and Witkin) or `converged` (backward
-  /// Euler solved by the line-search Newton); "" = linearised.
+  /// implicit-euler and bdf2: `linearised` (one Newton step, Baraff and Witkin, Choi and Ko) or
+  /// `converged` (the step's equation solved by the line-search Newton); "" = linearised.
   std::string solve;
   /// Runs whose stages the line-search Newton solves: how its local phase solves the exact
   /// stage Jacobian, `lu` (sparse LU) or `bicgstab` (BiCGSTAB preconditioned by the linear
@@ -70,7 +70,7 @@ double linear_tolerance_of(const IntegratorOptions& options);
 /// the other integrators (which reject the key).
 std::string nonlinear_solver_of(const IntegratorOptions& options);
 /// Whether the run solves its stages with the line-search Newton (arkode-dirk and arkode-imex
-/// by default, implicit-euler with solve = converged).
+/// by default, implicit-euler and bdf2 with solve = converged).
 bool uses_line_search(const IntegratorOptions& options);
 /// `exact_solve`, or `lu` when it is empty.
 std::string exact_solve_of(const IntegratorOptions& options);

@@ -1,5 +1,6 @@
 #include "integrators/projective_dynamics/projective_dynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/parallel/fixed_block_sum.hpp"
@@ -85,11 +86,14 @@ double ProjectiveDynamics::step(double t_stop) {
     particle(v, i) = constraints.trajectory(i)->velocity(t_next);
   }
   m_trace.clear();
+  double start_terms = 0.0;
+  const double start = potential(h, start_terms);
+  if (m_record) m_trace.push_back(start);
   double omega = 1.0;  // Chebyshev's weight of loop index k is Wang's omega_{k+1}
   const std::vector<int>& slots = m_matrix.slots();
   const auto free_count = static_cast<std::ptrdiff_t>(slots.size());
   for (int k = 0; k < m_iterations; ++k) {
-    if (m_record) m_trace.push_back(potential(h));
+    if (m_record && k > 0) m_trace.push_back(potential(h));
     m_system.forces(x, v, m_force, without_collision);
     ++m_counters.rhs_evals;
     // -grad E = F(x, (x - x_n)/h) - M/h^2 (x - x_n - h v_n), gathered in the factor's order.
@@ -141,13 +145,21 @@ double ProjectiveDynamics::step(double t_stop) {
       throw IntegratorFailure("pd_not_finite", "projective-dynamics: a non-finite iterate at t = " +
                                                    std::to_string(t_next));
   }
-  if (m_record) m_trace.push_back(potential(h));
+  double end_terms = 0.0;
+  const double end = potential(h, end_terms);
+  if (m_record) m_trace.push_back(end);
+  m_counters.add_potential_change(start, end, std::max(start_terms, end_terms));
   m_counters.newton_iters += m_iterations;
   m_system.project(t_next, x, v);
   return accept_fixed_step(t_next);
 }
 
 double ProjectiveDynamics::potential(double h) const {
+  double magnitude = 0.0;
+  return potential(h, magnitude);
+}
+
+double ProjectiveDynamics::potential(double h, double& magnitude) const {
   const Eigen::Index n3 = m_y.size() / 2;
   const ConstVecMap x(m_y.data(), n3);
   const double m = m_system.particle_mass();
@@ -158,8 +170,9 @@ double ProjectiveDynamics::potential(double h) const {
     air += (particle(x, i) - particle(m_start, i)).squaredNorm();
   }
   const EnergyBreakdown e = m_system.energy(x, Eigen::VectorXd::Zero(n3));
-  return m / (2.0 * h * h) * inertia + c_air / (2.0 * h) * air + e.spring + e.gravity +
-         e.collision;
+  const double kinetic = m / (2.0 * h * h) * inertia + c_air / (2.0 * h) * air;
+  magnitude = kinetic + e.spring + std::abs(e.gravity) + e.collision;
+  return kinetic + e.spring + e.gravity + e.collision;
 }
 
 IntegratorDeclaration projective_dynamics_declaration() {

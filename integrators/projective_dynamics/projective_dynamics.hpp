@@ -43,7 +43,8 @@ class ProjectiveDynamics final : public Integrator {
   /// Factors A again when the fixed set or the step size changed since the last factorisation.
   void update_factor(double h);
   /// Incremental potential at the positions of m_y (free particles' terms; the fixed ones'
-  /// are constants of the step).
+  /// are constants of the step); in `magnitude` the sum of its terms' absolute values.
+  double potential(double h, double& magnitude) const;
   double potential(double h) const;
 
   double m_dt;

@@ -93,12 +93,20 @@ double Vbd::step(double t_stop) {
   // IPC's lagged friction of the step (docs/model.md section 4.12), part of G's contact term.
   m_system.freeze_friction(m_x_n, h);
   start_positions(h, t_next, x);
+  m_guess = x;
   if (m_chebyshev) m_old = x;  // x^(0); x^(-1) is never read
   double omega = 1.0;
   for (int k = 1; k <= m_iterations; ++k) {
     m_counters.line_search_backtracks += m_descent.sweep(x);
     if (m_chebyshev) accelerate(k, omega, x);
   }
+  // G from the start to the last iterate, both with the last sweep's damping directions: two
+  // evaluations a step, none a sweep.
+  const VertexBlockPotential& potential = m_descent.potential();
+  double start_terms = 0.0, end_terms = 0.0;
+  const double start = potential.value(m_guess, start_terms);
+  const double end = potential.value(x, end_terms);
+  m_counters.add_potential_change(start, end, std::max(start_terms, end_terms));
   // One force and Jacobian-block evaluation of every particle per sweep.
   m_counters.newton_iters += m_iterations;
   m_counters.rhs_evals += m_iterations;

@@ -45,6 +45,7 @@ class Vbd final : public Integrator {
   double m_rho;
   VertexBlockDescent m_descent;
   Eigen::VectorXd m_x_n, m_v_n, m_previous_velocity, m_older, m_old;
+  Eigen::VectorXd m_guess;  // the step's start positions, for the potential's change
   double m_previous_step = 0.0;  // 0: no last step to take an acceleration from
 };
 

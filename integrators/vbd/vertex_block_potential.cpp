@@ -135,15 +135,21 @@ double VertexBlockPotential::energy_change(int i, const double* x, const Vec3& d
 }
 
 double VertexBlockPotential::value(ConstVecRef x) const {
+  double magnitude = 0.0;
+  return value(x, magnitude);
+}
+
+double VertexBlockPotential::value(ConstVecRef x, double& magnitude) const {
   const auto& fixed = m_system.constraints().mask();
   const Collision& collision = m_system.collision();
   const LaggedFriction& friction = m_system.friction();
-  double g = 0.0;
+  double g = 0.0, gravity = 0.0;
   for (int i = 0; i < m_system.num_particles(); ++i) {
     if (fixed[static_cast<std::size_t>(i)]) continue;
     const Vec3 xi = particle(x, i);
-    g += m_mass / (2.0 * m_h * m_h) * (xi - particle(m_y, i)).squaredNorm() - m_weight.dot(xi) +
+    g += m_mass / (2.0 * m_h * m_h) * (xi - particle(m_y, i)).squaredNorm() +
          m_c_air / (2.0 * m_h) * (xi - particle(m_x_n, i)).squaredNorm() + collision.energy(i, xi);
+    gravity -= m_weight.dot(xi);
     if (friction.frozen()) g += friction.energy(i, xi);
   }
   const SpringSet& springs = m_system.cloth().springs;
@@ -156,7 +162,9 @@ double VertexBlockPotential::value(ConstVecRef x) const {
         m_h;
     g += 0.5 * m_h * m_c_spring * rate * rate;
   }
-  return g;
+  // Every term but gravity's is non-negative.
+  magnitude = g + std::abs(gravity);
+  return g + gravity;
 }
 
 }  // namespace drape

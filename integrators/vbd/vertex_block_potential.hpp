@@ -44,7 +44,9 @@ class VertexBlockPotential {
   /// its relative accuracy when the move is small (no cancellation of G's large terms); in
   /// `magnitude` the sum of the terms' absolute values, which bounds its round-off.
   double energy_change(int i, const double* x, const Vec3& dx, double& magnitude) const;
-  /// G(x) over all particles (fixed ones' terms included: constants of the step).
+  /// G(x) over the free particles' terms and all springs (the fixed particles' own terms are
+  /// constants of the step); in `magnitude` the sum of its terms' absolute values.
+  double value(ConstVecRef x, double& magnitude) const;
   double value(ConstVecRef x) const;
 
   double step_size() const { return m_h; }

@@ -1,12 +1,15 @@
-// Choi and Ko's linearised BDF2: second order, settles on the equilibrium, never gains energy at
-// the frame step, restarts as implicit Euler at events, rejects keys it does not read.
+// Choi and Ko's BDF2, linearised and converged: second order, settles on the equilibrium, never
+// gains energy at the frame step, restarts as implicit Euler at events, rejects keys it does not
+// read; the converged step solves BDF2's equation.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <Eigen/SparseLU>
 
 #include "integrators/bdf2/bdf2.hpp"
 #include "integrators/implicit_euler/implicit_euler.hpp"
 #include "tests/support/reference_trajectory.hpp"
+#include "tests/support/swinging_sheet.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {
@@ -19,6 +22,17 @@ IntegratorOptions bdf2_options(double dt, const std::string& linear_solver) {
                                   {"linear_solver", linear_solver},
                                   {"linear_tolerance", 1e-12},
                                   {"max_linear_iters", 1000}},
+                                 "test", "integrator");
+}
+
+// bdf2 with solve = converged at step dt, ARKODE's test at `rtol` (atol = rtol / 1000, the
+// defaults' ratio), read as a scene's would be.
+IntegratorOptions converged_options(double dt, double rtol) {
+  return read_integrator_options({{"name", "bdf2"},
+                                  {"dt", dt},
+                                  {"solve", "converged"},
+                                  {"rtol", rtol},
+                                  {"atol", 1e-3 * rtol}},
                                  "test", "integrator");
 }
 
@@ -52,21 +66,78 @@ double energy_of(const ClothSystem& s, const Eigen::VectorXd& y) {
 }
 
 // The position error at t_end = 0.1 s against the exact trajectory, at dt = 4e-4 s halved three
-// times: its fitted slope is BDF2's order.
+// times: its fitted slope is BDF2's order, linearised with each linear solver and converged.
 TEST(Bdf2, TrajectoryIsSecondOrder) {
   auto s = hanging_chain(6, 0.0, 0.0);
   const Eigen::VectorXd y0 = swung_chain(*s);
   const Eigen::VectorXd reference = testing::reference_trajectory(*s, y0, 0.1);
   const Eigen::Index n3 = reference.size() / 2;
-  for (const char* solver : {"pcg-reduced", "pcg-multigrid", "sparse-direct"}) {
+  for (const char* run : {"pcg-reduced", "pcg-multigrid", "sparse-direct", "converged"}) {
     const std::vector<double> dts = {4e-4, 2e-4, 1e-4, 5e-5};
     std::vector<double> errors;
     for (const double dt : dts) {
-      Bdf2 method(*s, bdf2_options(dt, solver));
+      Bdf2 method(*s, std::string(run) == "converged" ? converged_options(dt, 1e-10)
+                                                      : bdf2_options(dt, run));
       method.reset(0.0, y0);
       errors.push_back((testing::run_until(method, 0.1) - reference).head(n3).norm());
     }
-    EXPECT_NEAR(testing::fitted_order(dts, errors), 2.0, 0.15) << solver;
+    EXPECT_NEAR(testing::fitted_order(dts, errors), 2.0, 0.15) << run;
+  }
+}
+
+// The weighted RMS norm (ARKODE's weights 1 / (rtol |y_n| + atol)) of the Newton correction
+// that the residual of y_{n+1} = a + gamma f(t, y_{n+1}) still asks for, with the exact
+// Jacobian J and a sparse LU: the error the solve left. The position rows' residual must be
+// round-off (returned in `position_residual`): the correction then lives in the velocities,
+// (M - gamma D - gamma^2 K) dv = -M r_v, and dx = gamma dv.
+double correction_norm(const ClothSystem& s, double t, double gamma, const Eigen::VectorXd& a,
+                       const Eigen::VectorXd& y, const Eigen::VectorXd& weights,
+                       double& position_residual) {
+  const Eigen::Index n3 = y.size() / 2;
+  Eigen::VectorXd f(y.size());
+  s.rhs(t, y, f);
+  Eigen::VectorXd r = y - a - gamma * f;
+  for (const int i : s.constraints().fixed_particles()) {  // prescribed, then projected
+    r.segment<3>(3 * i).setZero();
+    r.segment<3>(n3 + 3 * i).setZero();
+  }
+  position_residual = r.head(n3).lpNorm<Eigen::Infinity>();
+  Eigen::SparseMatrix<double> dfdx, dfdv, identity(n3, n3);
+  s.force_jacobians(y.head(n3), y.tail(n3), false, dfdx, dfdv);
+  identity.setIdentity();
+  const double m = s.particle_mass();
+  const Eigen::SparseMatrix<double> a_v = m * identity - gamma * dfdv - gamma * gamma * dfdx;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(a_v);
+  Eigen::VectorXd correction(y.size());
+  correction.tail(n3) = lu.solve(Eigen::VectorXd(-m * r.tail(n3)));
+  correction.head(n3) = gamma * correction.tail(n3);
+  return std::sqrt(correction.cwiseProduct(weights).squaredNorm() / static_cast<double>(y.size()));
+}
+
+// The swinging sheet at the frame step: each converged step solves BDF2's equation with equal
+// steps, y_{n+1} = 4/3 y_n - 1/3 y_{n-1} + 2/3 h f(y_{n+1}) (the first one backward Euler's,
+// y_1 = y_0 + h f(y_1)), to within ARKODE's tolerance 0.1 in its weights at either rtol.
+TEST(Bdf2, ConvergedStepSolvesItsEquation) {
+  const double h = 1.0 / 30.0;
+  for (const double rtol : {1e-4, 1e-8}) {
+    auto s = testing::swinging_sheet(1.0);
+    Bdf2 method(*s, converged_options(h, rtol));
+    std::vector<Eigen::VectorXd> y = {s->initial_state(0.0)};
+    method.reset(0.0, y[0]);
+    for (int k = 1; k <= 6; ++k) {
+      method.step(1.0);
+      y.push_back(method.state());
+      const bool first = k == 1;
+      const Eigen::VectorXd a = first ? y[0] : Eigen::VectorXd((4.0 * y[k - 1] - y[k - 2]) / 3.0);
+      const Eigen::VectorXd weights = 1.0 / (rtol * y[k - 1].array().abs() + 1e-3 * rtol);
+      double position_residual = 0.0;
+      const double error = correction_norm(*s, k * h, first ? h : 2.0 * h / 3.0, a, y[k],
+                                           weights, position_residual);
+      EXPECT_LT(position_residual, 1e-14) << rtol << " step " << k;
+      EXPECT_LT(error, 0.1) << rtol << " step " << k;
+      EXPECT_GT((y[k] - y[k - 1]).lpNorm<Eigen::Infinity>(), 1e-3) << "the sheet must move";
+    }
+    EXPECT_EQ(method.counters().convergence_failures, 0);
   }
 }
 
@@ -135,12 +206,16 @@ TEST(Bdf2, NeverGainsEnergyOnTheUndampedHangingCloth) {
 
 // After reset() (an event) the history is gone: the next step is implicit Euler's from that
 // state, bit for bit with the direct solve, to CG's tolerance with multigrid CG (whose start
-// projects on each integrator's own last solves).
+// projects on each integrator's own last solves). With solve = converged it is implicit-euler's
+// converged step (bit for bit: the Newton's CG starts from zero).
 TEST(Bdf2, RestartsWithAnImplicitEulerStep) {
-  for (const char* solver : {"sparse-direct", "pcg-multigrid"}) {
+  std::vector<IntegratorOptions> runs = {bdf2_options(1e-2, "sparse-direct"),
+                                         bdf2_options(1e-2, "pcg-multigrid"),
+                                         converged_options(1e-2, 1e-6)};
+  for (IntegratorOptions& o : runs) {
+    const bool exact = o.linear_solver == "sparse-direct" || o.solve == "converged";
     const testing::CirclingCorner corner = testing::circling_corner();
     ClothSystem& s = *corner.system;
-    IntegratorOptions o = bdf2_options(1e-2, solver);
     Bdf2 method(s, o);
     method.reset(0.0, corner.start);
     for (int k = 0; k < 5; ++k) method.step(1.0);
@@ -155,8 +230,8 @@ TEST(Bdf2, RestartsWithAnImplicitEulerStep) {
     euler.reset(t, y);
     euler.step(1.0);
     EXPECT_EQ(method.time(), euler.time());
-    if (std::string(solver) == "sparse-direct")
-      EXPECT_EQ(method.state(), euler.state());
+    if (exact)
+      EXPECT_EQ(method.state(), euler.state()) << o.linear_solver << " " << o.solve;
     else
       EXPECT_LT((method.state() - euler.state()).lpNorm<Eigen::Infinity>(),
                 1e-10 * (euler.state() - y).lpNorm<Eigen::Infinity>());
@@ -187,9 +262,22 @@ TEST(Bdf2, ReadsTheLinearSolverKeysAndRejectsOthers) {
   unknown["iterations"] = 3;
   EXPECT_EQ(error_of(unknown), "scene.json: integrator.iterations: unknown key");
   nlohmann::json unused = plain;
-  unused["solve"] = "converged";
-  EXPECT_EQ(error_of(unused), "scene.json: integrator.solve: not used by this run of 'bdf2': "
-                              "only implicit-euler read it");
+  unused["rtol"] = 1e-5;
+  EXPECT_EQ(error_of(unused), "scene.json: integrator.rtol: not used by this run of 'bdf2': "
+                              "only the arkode-* integrators and, with solve = converged, "
+                              "implicit-euler and bdf2 read it");
+  nlohmann::json converged = unused;
+  converged["solve"] = "converged";
+  converged["max_newton_iters"] = 50;
+  converged["max_step_halvings"] = 0;
+  converged["exact_solve"] = "bicgstab";
+  EXPECT_EQ(error_of(converged), "no error");
+  EXPECT_TRUE(uses_line_search(read_integrator_options(converged, "scene.json", "integrator")));
+  EXPECT_FALSE(uses_line_search(o));
+  nlohmann::json bad_solve = plain;
+  bad_solve["solve"] = "exact";
+  EXPECT_EQ(error_of(bad_solve), "scene.json: integrator.solve: unknown solve 'exact' (one of: "
+                                 "linearised, converged)");
   nlohmann::json bad_solver = plain;
   bad_solver["linear_solver"] = "gmres";
   EXPECT_EQ(error_of(bad_solver).rfind("scene.json: integrator.linear_solver: ", 0), 0u);

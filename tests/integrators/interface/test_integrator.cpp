@@ -86,9 +86,26 @@ TEST(Integrator, CountersKeepTheirJsonNames) {
   c.resets = 9;
   c.step_halvings = 10;
   c.line_search_backtracks = 11;
+  c.potential_decrease = 12.5;
+  c.potential_rises = 13;
   EXPECT_EQ(c.to_json(), nlohmann::json::parse(R"({"steps": 1, "attempts": 2, "rhs_evals": 3,
       "newton_iters": 4, "linear_iters": 5, "jacobian_setups": 6, "error_test_failures": 7,
-      "convergence_failures": 8, "resets": 9, "step_halvings": 10, "line_search_backtracks": 11})"));
+      "convergence_failures": 8, "resets": 9, "step_halvings": 10, "line_search_backtracks": 11,
+      "potential_decrease": 12.5, "potential_rises": 13})"));
+}
+
+// A step's decrease adds up; a rise counts only above the round-off of E's terms (1e3 epsilon
+// of their magnitude).
+TEST(Integrator, PotentialChangesAddUpAndRisesCountAboveRoundOff) {
+  IntegratorCounters c;
+  c.add_potential_change(3.0, 1.0, 5.0);
+  EXPECT_EQ(c.potential_decrease, 2.0);
+  EXPECT_EQ(c.potential_rises, 0);
+  c.add_potential_change(1.0, 1.0 + 1e-14, 10.0);  // below 1e3 * 2.2e-16 * 10 = 2.2e-12
+  EXPECT_EQ(c.potential_rises, 0);
+  c.add_potential_change(1.0, 1.0 + 1e-11, 10.0);
+  EXPECT_EQ(c.potential_rises, 1);
+  EXPECT_NEAR(c.potential_decrease, 2.0 - 1e-14 - 1e-11, 1e-15);
 }
 
 }  // namespace

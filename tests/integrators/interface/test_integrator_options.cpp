@@ -100,7 +100,7 @@ TEST(IntegratorOptions, KeysTheIntegratorDoesNotReadAreRejected) {
   }
   EXPECT_EQ(error_of({{"name", "leapfrog"}, {"dt", 1e-4}, {"rtol", 1e-3}}),
             "scene.json: integrator.rtol: not used by this run of 'leapfrog': only the arkode-* "
-            "integrators and implicit-euler with solve = converged read it");
+            "integrators and, with solve = converged, implicit-euler and bdf2 read it");
 }
 
 TEST(IntegratorOptions, KeysAreAcceptedWhereTheyAreRead) {
