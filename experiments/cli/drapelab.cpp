@@ -19,7 +19,7 @@
 #include "experiments/cli/fabrics_command.hpp"
 #include "experiments/cli/integrators_command.hpp"
 #include "experiments/cli/run_stats.hpp"
-#include "experiments/cli/threads_option.hpp"
+#include "experiments/options/threads_option.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_files.hpp"
 #include "experiments/cli/run_progress_display.hpp"

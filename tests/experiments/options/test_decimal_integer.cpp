@@ -1,6 +1,6 @@
-// decimal_integer (experiments/cli/decimal_integer.hpp): integer options are read in base 10,
+// decimal_integer (experiments/options/decimal_integer.hpp): integer options are read in base 10,
 // whatever CLI11's base-0 conversion would make of a leading 0 or 0x.
-#include "experiments/cli/decimal_integer.hpp"
+#include "experiments/options/decimal_integer.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
-#include "experiments/cli/threads_option.hpp"
+#include "experiments/options/threads_option.hpp"
 
 #include <string>
 
 #include "core/parallel/parallel_for.hpp"
-#include "experiments/cli/decimal_integer.hpp"
+#include "experiments/options/decimal_integer.hpp"
 
 namespace drape {
 
