@@ -11,7 +11,7 @@
 #include "core/scene/json_reader.hpp"
 #include "core/scene/output_error.hpp"
 #include "experiments/run/run_files.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 
 namespace drape {
 

@@ -24,7 +24,7 @@
 #include "experiments/run/run_files.hpp"
 #include "experiments/cli/run_progress_display.hpp"
 #include "experiments/run/run_folder.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 #include "experiments/viewer/view_command.hpp"
 #include "experiments/live/live_command.hpp"
 

@@ -20,7 +20,7 @@
 #include "experiments/live/live_session.hpp"
 #include "experiments/live/sensor_bridge.hpp"
 #include "experiments/run/run_folder.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 
 // Last: it includes httplib.h, whose system headers define macros that Eigen's templates
 // (through the scene) trip over.

@@ -16,7 +16,7 @@
 #include "experiments/run/frame_recorder.hpp"
 #include "experiments/run/run_folder.hpp"
 #include "experiments/run/run_files.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 #include "experiments/run/scene_simulation.hpp"
 #include "experiments/run/series_writers.hpp"
 #include "experiments/viewer/page_data.hpp"

@@ -25,7 +25,7 @@
 #include "experiments/sweep/deliberate_crash.hpp"
 #include "experiments/run/run_files.hpp"
 #include "core/parallel/parallel_for.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 
 namespace drape {
 

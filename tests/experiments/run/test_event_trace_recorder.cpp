@@ -10,7 +10,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 #include "experiments/viewer/csv_table.hpp"
 #include "tests/experiments/run/run_fixtures.hpp"
 

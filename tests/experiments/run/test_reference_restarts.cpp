@@ -13,7 +13,7 @@
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/scene.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 #include "experiments/run/scene_simulation.hpp"
 
 namespace drape {

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 #include "experiments/viewer/csv_table.hpp"
 #include "tests/experiments/run/run_fixtures.hpp"
 

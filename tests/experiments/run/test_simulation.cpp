@@ -9,7 +9,7 @@
 #include <string>
 
 #include "core/scene/scene.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 #include "experiments/run/scene_simulation.hpp"
 
 namespace drape {

@@ -1,4 +1,4 @@
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 
 #include <fmt/format.h>
 

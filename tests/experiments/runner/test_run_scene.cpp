@@ -1,7 +1,7 @@
 // One scene's run (docs/outputs.md): its folder holds the files summary.json says it wrote,
 // summary.json is the outcome's summary, its counts are the scene's, and state.csv holds the
 // final state the summary's energy is of.
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 
 #include <gtest/gtest.h>
 
