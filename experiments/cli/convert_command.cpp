@@ -10,7 +10,7 @@
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
 #include "core/scene/output_error.hpp"
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 #include "experiments/runner/run_scene.hpp"
 
 namespace drape {

@@ -19,7 +19,7 @@
 #include "experiments/live/live_page.hpp"
 #include "experiments/live/live_session.hpp"
 #include "experiments/live/sensor_bridge.hpp"
-#include "experiments/run/run_folder.hpp"
+#include "experiments/output/run_folder.hpp"
 #include "experiments/runner/run_scene.hpp"
 
 // Last: it includes httplib.h, whose system headers define macros that Eigen's templates

@@ -12,13 +12,13 @@
 #include "core/scene/input_error.hpp"
 #include "experiments/live/live_hands.hpp"
 #include "experiments/live/live_run_files.hpp"
-#include "experiments/run/event_trace_recorder.hpp"
-#include "experiments/run/frame_recorder.hpp"
-#include "experiments/run/run_folder.hpp"
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/event_trace_recorder.hpp"
+#include "experiments/output/frame_recorder.hpp"
+#include "experiments/output/run_folder.hpp"
+#include "experiments/output/run_files.hpp"
 #include "experiments/runner/run_scene.hpp"
 #include "experiments/run/scene_simulation.hpp"
-#include "experiments/run/series_writers.hpp"
+#include "experiments/output/series_writers.hpp"
 #include "experiments/viewer/page_data.hpp"
 
 namespace drape {

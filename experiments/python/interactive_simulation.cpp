@@ -7,8 +7,8 @@
 #include "core/input/input_config.hpp"
 #include "core/scene/input_error.hpp"
 #include "experiments/live/live_hands.hpp"
-#include "experiments/run/provenance.hpp"
-#include "experiments/run/run_folder.hpp"
+#include "experiments/output/provenance.hpp"
+#include "experiments/output/run_folder.hpp"
 #include "experiments/run/scene_simulation.hpp"
 
 namespace drape {

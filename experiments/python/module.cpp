@@ -7,7 +7,7 @@
 #include "experiments/python/python_json.hpp"
 #include "experiments/python/python_scene.hpp"
 #include "experiments/python/python_simulation.hpp"
-#include "experiments/run/provenance.hpp"
+#include "experiments/output/provenance.hpp"
 #include "integrators/interface/registry.hpp"
 
 namespace py = pybind11;

@@ -6,14 +6,14 @@
 
 #include "core/parallel/parallel_for.hpp"
 
-#include "experiments/run/event_trace_recorder.hpp"
-#include "experiments/run/frame_recorder.hpp"
-#include "experiments/run/provenance.hpp"
-#include "experiments/run/reference_restarts.hpp"
-#include "experiments/run/run_files.hpp"
-#include "experiments/run/run_folder.hpp"
+#include "experiments/output/event_trace_recorder.hpp"
+#include "experiments/output/frame_recorder.hpp"
+#include "experiments/output/provenance.hpp"
+#include "experiments/output/reference_restarts.hpp"
+#include "experiments/output/run_files.hpp"
+#include "experiments/output/run_folder.hpp"
 #include "experiments/run/scene_simulation.hpp"
-#include "experiments/run/series_writers.hpp"
+#include "experiments/output/series_writers.hpp"
 
 namespace drape {
 

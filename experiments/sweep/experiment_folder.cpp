@@ -6,7 +6,7 @@
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
-#include "experiments/run/run_folder.hpp"
+#include "experiments/output/run_folder.hpp"
 
 namespace drape {
 

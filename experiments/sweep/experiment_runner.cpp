@@ -23,7 +23,7 @@
 #include "experiments/sweep/stored_runs.hpp"
 #include "experiments/sweep/run_validation.hpp"
 #include "experiments/sweep/deliberate_crash.hpp"
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 #include "core/parallel/parallel_for.hpp"
 #include "experiments/runner/run_scene.hpp"
 

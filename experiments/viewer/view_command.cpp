@@ -14,7 +14,7 @@
 #include "core/scene/json_text.hpp"
 #include "core/scene/output_error.hpp"
 #include "experiments/live/live_run_files.hpp"
-#include "experiments/run/run_folder.hpp"
+#include "experiments/output/run_folder.hpp"
 #include "experiments/runner/run_scene.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/viewer/viewer_page.hpp"

@@ -8,7 +8,7 @@
 
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_reader.hpp"
-#include "experiments/run/run_folder.hpp"
+#include "experiments/output/run_folder.hpp"
 #include "experiments/viewer/csv_table.hpp"
 
 namespace drape {

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "experiments/run/run_folder.hpp"
+#include "experiments/output/run_folder.hpp"
 #include "experiments/viewer/csv_table.hpp"
 #include "tests/experiments/run/run_fixtures.hpp"
 #include "tests/support/test_support.hpp"

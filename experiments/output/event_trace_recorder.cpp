@@ -1,6 +1,6 @@
-#include "experiments/run/event_trace_recorder.hpp"
+#include "experiments/output/event_trace_recorder.hpp"
 
-#include "experiments/run/frame_recorder.hpp"
+#include "experiments/output/frame_recorder.hpp"
 
 namespace drape {
 

@@ -1,11 +1,11 @@
-#include "experiments/run/series_writers.hpp"
+#include "experiments/output/series_writers.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 
 namespace drape {
 

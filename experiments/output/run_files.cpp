@@ -1,4 +1,4 @@
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 
 #include <fmt/format.h>
 

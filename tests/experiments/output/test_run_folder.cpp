@@ -1,5 +1,5 @@
 // A run folder never mixes two runs: --out checks, clearing, summary.json last (docs/outputs.md).
-#include "experiments/run/run_folder.hpp"
+#include "experiments/output/run_folder.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

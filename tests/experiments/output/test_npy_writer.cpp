@@ -1,6 +1,6 @@
 // The .npy files of event_trace/ (NumPy format 1.0): the header's bytes, the shape rewritten on
 // close, the records read back as they were appended.
-#include "experiments/run/npy_writer.hpp"
+#include "experiments/output/npy_writer.hpp"
 
 #include <gtest/gtest.h>
 

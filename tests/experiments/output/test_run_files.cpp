@@ -1,6 +1,6 @@
 // The files a run writes (docs/model.md section 9): state.csv read back to the last bit, JSON
 // written under a temporary name then renamed, a failed write an OutputError naming the file.
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 
 #include <gtest/gtest.h>
 

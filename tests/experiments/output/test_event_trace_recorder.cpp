@@ -1,7 +1,7 @@
 // event_trace/ (docs/outputs.md): the frames of the window after the start at the fixed rate,
 // those at step ends equal to trace.csv's in single precision, the fixed flags, and a run whose
 // steps recording leaves unchanged. The windows after events: test_event_trace.py.
-#include "experiments/run/event_trace_recorder.hpp"
+#include "experiments/output/event_trace_recorder.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-#include "experiments/run/vtk_series.hpp"
+#include "experiments/output/vtk_series.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 
 namespace drape {
 

@@ -12,7 +12,7 @@
 #include "core/model/cloth_system.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/run/simulation.hpp"
-#include "experiments/run/vtk_series.hpp"
+#include "experiments/output/vtk_series.hpp"
 
 namespace drape {
 

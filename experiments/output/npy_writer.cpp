@@ -1,4 +1,4 @@
-#include "experiments/run/npy_writer.hpp"
+#include "experiments/output/npy_writer.hpp"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 
 namespace drape {
 

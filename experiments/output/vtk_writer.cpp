@@ -1,4 +1,4 @@
-#include "experiments/run/vtk_writer.hpp"
+#include "experiments/output/vtk_writer.hpp"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "core/dummy/dummy.hpp"
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 
 namespace drape {
 

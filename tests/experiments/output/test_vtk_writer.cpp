@@ -1,7 +1,7 @@
 // The legacy VTK frames of frames/ (docs/outputs.md): read back token by token, the cloth's
 // points, one quad per grid cell, velocities and flags, its time in a TIME field; the object's
 // particles as vertices with outward unit normals.
-#include "experiments/run/vtk_writer.hpp"
+#include "experiments/output/vtk_writer.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // frames.vtk.series: complete JSON after every frame, each frame appended in place.
-#include "experiments/run/vtk_series.hpp"
+#include "experiments/output/vtk_series.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "experiments/run/run_folder.hpp"
+#include "experiments/output/run_folder.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-#include "experiments/run/reference_restarts.hpp"
+#include "experiments/output/reference_restarts.hpp"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 
 namespace drape {
 

@@ -1,7 +1,7 @@
 // energy.csv (docs/outputs.md): a row at the start and at the first step end at or after each
 // multiple of output.energy_interval, with the step's own time, every step with interval 0;
 // each row's total the sum of its terms, and the summary's drift the largest change of the rows.
-#include "experiments/run/series_writers.hpp"
+#include "experiments/output/series_writers.hpp"
 
 #include <gtest/gtest.h>
 

@@ -14,7 +14,7 @@
 
 #include "core/model/cloth_system.hpp"
 #include "core/scene/scene.hpp"
-#include "experiments/run/npy_writer.hpp"
+#include "experiments/output/npy_writer.hpp"
 #include "experiments/run/simulation.hpp"
 
 namespace drape {

@@ -1,4 +1,4 @@
-#include "experiments/run/provenance.hpp"
+#include "experiments/output/provenance.hpp"
 
 #include <fmt/format.h>
 #include <sundials/sundials_config.h>

@@ -1,5 +1,5 @@
 // Provenance: the build and machine fields, in summary.json and `drapelab --version`.
-#include "experiments/run/provenance.hpp"
+#include "experiments/output/provenance.hpp"
 
 #include <gtest/gtest.h>
 

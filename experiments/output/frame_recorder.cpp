@@ -1,12 +1,12 @@
-#include "experiments/run/frame_recorder.hpp"
+#include "experiments/output/frame_recorder.hpp"
 
 #include <fmt/format.h>
 
 #include <stdexcept>
 
 #include "core/dummy/dummy.hpp"
-#include "experiments/run/run_files.hpp"
-#include "experiments/run/vtk_writer.hpp"
+#include "experiments/output/run_files.hpp"
+#include "experiments/output/vtk_writer.hpp"
 
 namespace drape {
 
