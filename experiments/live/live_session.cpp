@@ -11,7 +11,7 @@
 #include "core/input/input_config.hpp"
 #include "core/scene/input_error.hpp"
 #include "experiments/live/live_hands.hpp"
-#include "experiments/live/live_run_files.hpp"
+#include "experiments/output/live_run_files.hpp"
 #include "experiments/output/event_trace_recorder.hpp"
 #include "experiments/output/frame_recorder.hpp"
 #include "experiments/output/run_folder.hpp"

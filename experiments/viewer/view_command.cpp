@@ -13,7 +13,7 @@
 #include "core/scene/input_error.hpp"
 #include "core/scene/json_text.hpp"
 #include "core/scene/output_error.hpp"
-#include "experiments/live/live_run_files.hpp"
+#include "experiments/output/live_run_files.hpp"
 #include "experiments/output/run_folder.hpp"
 #include "experiments/runner/run_scene.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
