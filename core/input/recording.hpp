@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "core/model/state.hpp"
 
 namespace drape {

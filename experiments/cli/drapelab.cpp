@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "core/parallel/parallel_for.hpp"
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "core/input/recording.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/cli/convert_command.hpp"

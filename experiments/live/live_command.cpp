@@ -10,10 +10,10 @@
 #include <thread>
 
 #include "core/parallel/parallel_for.hpp"
-#include "core/scene/input_error.hpp"
-#include "core/scene/output_error.hpp"
-#include "core/scene/json_reader.hpp"
-#include "core/scene/json_text.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/output_error.hpp"
+#include "core/io/json_reader.hpp"
+#include "core/io/json_text.hpp"
 #include "experiments/options/decimal_integer.hpp"
 #include "experiments/options/threads_option.hpp"
 #include "experiments/live/live_page.hpp"

@@ -9,7 +9,7 @@
 
 #include "core/dummy/dummy_sources.hpp"
 #include "core/input/input_config.hpp"
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "experiments/live/live_hands.hpp"
 #include "experiments/output/live_run_files.hpp"
 #include "experiments/output/event_trace_recorder.hpp"

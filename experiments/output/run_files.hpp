@@ -9,11 +9,11 @@
 #include <string>
 
 #include "core/model/cloth_system.hpp"
-#include "core/scene/output_error.hpp"
+#include "core/io/output_error.hpp"
 
 namespace drape {
 
-// OutputError (core/scene/output_error.hpp): a run stops at its first failed write with exit
+// OutputError (core/io/output_error.hpp): a run stops at its first failed write with exit
 // status 4 and leaves no summary.json (docs/outputs.md).
 
 /// Throws OutputError naming `file` and the system's reason once `out` has failed. Rows are

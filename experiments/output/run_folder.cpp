@@ -9,7 +9,7 @@
 #include <string>
 #include <utility>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 
 namespace drape {
 

@@ -8,7 +8,7 @@
 #include <set>
 #include <nlohmann/json.hpp>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "experiments/output/run_files.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/sweep/results_table.hpp"

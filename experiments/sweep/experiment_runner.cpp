@@ -11,8 +11,8 @@
 #include <set>
 #include <thread>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_reader.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_reader.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/sweep/child_runs.hpp"
 #include "experiments/sweep/experiment_folder.hpp"

@@ -10,9 +10,9 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_text.hpp"
-#include "core/scene/output_error.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_text.hpp"
+#include "core/io/output_error.hpp"
 #include "experiments/output/live_run_files.hpp"
 #include "experiments/output/run_folder.hpp"
 #include "experiments/runner/run_scene.hpp"

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "core/scene/output_error.hpp"
+#include "core/io/output_error.hpp"
 
 namespace drape {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/runner/run_scene.hpp"
 #include "experiments/run/scene_simulation.hpp"

@@ -1,6 +1,6 @@
 // The error of a file drapelab writes (docs/outputs.md, exit status 4) and the probes that name
 // an unwritable output up front instead.
-#include "core/scene/output_error.hpp"
+#include "core/io/output_error.hpp"
 
 #include <gtest/gtest.h>
 #include <sys/socket.h>

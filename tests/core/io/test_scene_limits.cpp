@@ -1,7 +1,7 @@
 // The bounds every scene value is checked against before anything is built (docs/scene.md,
 // Limits): counts in 64 bits, products that would overflow, intervals that could not advance
 // time, each refused naming the field and the limit, the limits themselves accepted.
-#include "core/scene/scene_limits.hpp"
+#include "core/io/scene_limits.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "core/scene/json_text.hpp"
+#include "core/io/json_text.hpp"
 
 #include <iterator>
 #include <set>

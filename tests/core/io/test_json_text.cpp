@@ -3,8 +3,8 @@
 
 #include <fstream>
 
-#include "core/scene/json_reader.hpp"
-#include "core/scene/json_text.hpp"
+#include "core/io/json_reader.hpp"
+#include "core/io/json_text.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {

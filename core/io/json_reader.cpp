@@ -1,11 +1,11 @@
-#include "core/scene/json_reader.hpp"
+#include "core/io/json_reader.hpp"
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 
-#include "core/scene/json_text.hpp"
+#include "core/io/json_text.hpp"
 
 namespace drape {
 

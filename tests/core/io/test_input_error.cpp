@@ -1,6 +1,6 @@
 // InputError's message "file: field: what is wrong" (docs/scene.md, Limits): long input cut,
 // control characters and bytes of no UTF-8 sequence written as \xNN.
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "core/model/state.hpp"
 
 namespace drape {

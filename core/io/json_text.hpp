@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 
 namespace drape {
 

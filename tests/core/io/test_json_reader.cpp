@@ -1,7 +1,7 @@
 // The strict JSON reader: types, ranges, unknown keys, file errors.
 #include <gtest/gtest.h>
 
-#include "core/scene/json_reader.hpp"
+#include "core/io/json_reader.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <cmath>
