@@ -9,7 +9,7 @@
 
 #include "core/model/cloth.hpp"
 #include "core/forces/spring_kernel.hpp"
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 
 namespace drape {
 

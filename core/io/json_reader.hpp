@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/io/input_error.hpp"
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 
 namespace drape {
 

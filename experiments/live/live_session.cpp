@@ -190,7 +190,7 @@ void LiveSession::apply_keys() {
 void LiveSession::publish(double wall, bool behind, const nlohmann::json& ended) {
   const Simulation& simulation = m_run->simulation();
   const Eigen::VectorXd& y = simulation.state();
-  // y = [x; v] (core/model/state.hpp): the first 3N values are the positions.
+  // y = [x; v] (core/state/state.hpp): the first 3N values are the positions.
   std::vector<float> positions(static_cast<std::size_t>(y.size() / 2));
   for (std::size_t i = 0; i < positions.size(); ++i)
     positions[i] = static_cast<float>(y[static_cast<Eigen::Index>(i)]);

@@ -1,6 +1,6 @@
-// The one state layout (core/model/state.hpp): y = [x; v], 6N doubles, each block interleaved
+// The one state layout (core/state/state.hpp): y = [x; v], 6N doubles, each block interleaved
 // per particle; the views write through to the state they view.
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 
 #include <gtest/gtest.h>
 
