@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/model/cloth.hpp"
+#include "core/cloth/cloth.hpp"
 #include "core/forces/spring_kernel.hpp"
 #include "core/state/state.hpp"
 

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/model/cloth.hpp"
+#include "core/cloth/cloth.hpp"
 #include "core/io/input_error.hpp"
 #include "core/model/cloth_system.hpp"
 #include "core/manipulations/manipulation_params.hpp"

@@ -1,4 +1,4 @@
-#include "core/model/cloth.hpp"
+#include "core/cloth/cloth.hpp"
 
 #include <cstdlib>
 

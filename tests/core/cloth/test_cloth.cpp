@@ -3,7 +3,7 @@
 
 #include <map>
 
-#include "core/model/cloth.hpp"
+#include "core/cloth/cloth.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {
