@@ -16,7 +16,7 @@
 #include "experiments/cli/convert_command.hpp"
 #include "experiments/cli/did_you_mean.hpp"
 #include "experiments/cli/experiment_cli.hpp"
-#include "experiments/cli/fabrics_command.hpp"
+#include "experiments/catalogue/fabrics_command.hpp"
 #include "experiments/cli/integrators_command.hpp"
 #include "experiments/cli/run_stats.hpp"
 #include "experiments/options/threads_option.hpp"

@@ -2,7 +2,7 @@
 // package around it.
 #include <pybind11/pybind11.h>
 
-#include "experiments/cli/fabrics_command.hpp"
+#include "experiments/catalogue/fabrics_command.hpp"
 #include "experiments/python/python_errors.hpp"
 #include "experiments/python/python_json.hpp"
 #include "experiments/python/python_scene.hpp"

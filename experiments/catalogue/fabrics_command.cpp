@@ -1,4 +1,4 @@
-#include "experiments/cli/fabrics_command.hpp"
+#include "experiments/catalogue/fabrics_command.hpp"
 
 #include <fmt/format.h>
 
