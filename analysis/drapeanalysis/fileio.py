@@ -3,7 +3,7 @@ status): an input must be a regular file, and an output appears whole or not at 
 
 A named pipe where a file is expected would block its reader until some writer opened it (for
 ever, in practice), and a device may never end; drapelab refuses both as "not a regular file"
-(core/scene/json_reader.cpp, unreadable_file_reason), and so does open_input, with the same
+(core/io/json_reader.cpp, unreadable_file_reason), and so does open_input, with the same
 words. An output is written to a temporary file beside its place and renamed into it when
 complete (atomic_output), so a full disk, a quota or a file size limit leaves the old file or
 none, never a half one that looks finished."""

@@ -19,7 +19,7 @@ SHORT_HORIZON = 1.0 / 30.0
 # Frames of a run and of its reference are the same instant when their times agree this well
 # (both are t_e + k dt_trace computed the same way).
 SAME_INSTANT = 1e-9
-# The drift columns drapelab's summary.json gives (experiments/run/run_scene.cpp), emptied with
+# The drift columns drapelab's summary.json gives (experiments/runner/run_scene.cpp), emptied with
 # the analysis's own for a run that did not finish.
 SUMMARY_DRIFT = ("energy_drift_max_abs", "energy_drift_max_rel", "energy_drift_final_rel",
                  "energy_rise_max_rel")

@@ -15,7 +15,7 @@ from . import runfiles
 from .values import finite_number, shown
 
 # Each series: its reader, the scene key of its output interval and that key's default
-# (docs/scene.md). hands.csv is written on energy.csv's clock (experiments/run/run_scene.cpp).
+# (docs/scene.md). hands.csv is written on energy.csv's clock (experiments/runner/run_scene.cpp).
 SERIES = {
     "energy.csv": (runfiles.read_energy, "output.energy_interval", 0.01),
     "hands.csv": (runfiles.read_hands, "output.energy_interval", 0.01),

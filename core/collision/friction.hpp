@@ -25,7 +25,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 
 namespace drape {
 

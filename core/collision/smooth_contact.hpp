@@ -9,7 +9,7 @@
 // bound). At G = 0 its force k delta |grad G| is the `particle` model's at contact.
 #include <Eigen/Eigenvalues>
 
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 
 namespace drape {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/dummy/nearest_particle_grid.hpp"
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 
 namespace drape {
 

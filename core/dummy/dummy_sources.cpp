@@ -6,8 +6,8 @@
 #include <utility>
 
 #include "core/dummy/dress_form.hpp"
-#include "core/scene/json_reader.hpp"
-#include "core/scene/scene_limits.hpp"
+#include "core/io/json_reader.hpp"
+#include "core/io/scene_limits.hpp"
 #include "core/dummy/mesh_sections.hpp"
 
 namespace drape {

@@ -15,9 +15,9 @@
 #include <string>
 #include <unordered_map>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_reader.hpp"
-#include "core/scene/scene_limits.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_reader.hpp"
+#include "core/io/scene_limits.hpp"
 
 namespace drape {
 

@@ -7,7 +7,7 @@
 #include <array>
 #include <vector>
 
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 
 namespace drape::detail {
 

@@ -12,7 +12,7 @@
 // velocities), so a pair contributes [-J J; J -J] to the rows and columns (i, j).
 #include <cmath>
 
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 
 namespace drape {
 

@@ -7,9 +7,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/model/cloth.hpp"
+#include "core/cloth/cloth.hpp"
 #include "core/forces/spring_kernel.hpp"
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 
 namespace drape {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/input/recording.hpp"
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 
 namespace drape {
 

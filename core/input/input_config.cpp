@@ -1,8 +1,8 @@
 #include "core/input/input_config.hpp"
 
-#include "core/scene/json_reader.hpp"
-#include "core/scene/scene_limits.hpp"
-#include "core/scene/json_text.hpp"
+#include "core/io/json_reader.hpp"
+#include "core/io/scene_limits.hpp"
+#include "core/io/json_text.hpp"
 
 namespace drape {
 namespace {

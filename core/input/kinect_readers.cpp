@@ -5,7 +5,7 @@
 #include <cmath>
 #include <optional>
 
-#include "core/scene/scene_limits.hpp"
+#include "core/io/scene_limits.hpp"
 
 namespace drape {
 

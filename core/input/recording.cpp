@@ -4,10 +4,10 @@
 #include <charconv>
 #include <cmath>
 
-#include "core/scene/json_reader.hpp"
-#include "core/scene/json_text.hpp"
-#include "core/scene/output_error.hpp"
-#include "core/scene/scene_limits.hpp"
+#include "core/io/json_reader.hpp"
+#include "core/io/json_text.hpp"
+#include "core/io/output_error.hpp"
+#include "core/io/scene_limits.hpp"
 #include "core/input/kinect_readers.hpp"
 
 namespace drape {

@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "core/scene/input_error.hpp"
-#include "core/model/state.hpp"
+#include "core/io/input_error.hpp"
+#include "core/state/state.hpp"
 
 namespace drape {
 

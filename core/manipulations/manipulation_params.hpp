@@ -1,7 +1,7 @@
 #pragma once
 // Parameters of the paper's manipulations (docs/model.md section 7), read from a scene's
 // `manipulation` object.
-#include "core/model/cloth.hpp"
+#include "core/cloth/cloth.hpp"
 
 namespace drape {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Mapping (paper section 3.3; docs/model.md section 7): the cloth laid onto the dummy along its centre line.
-#include "core/model/cloth.hpp"
+#include "core/cloth/cloth.hpp"
 #include "core/dummy/dummy.hpp"
 
 namespace drape {

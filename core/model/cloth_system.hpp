@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/model/cloth.hpp"
+#include "core/cloth/cloth.hpp"
 #include "core/collision/collision.hpp"
 #include "core/collision/friction.hpp"
 #include "core/model/constraints.hpp"

@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 
 namespace drape {
 

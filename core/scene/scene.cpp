@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "core/fabrics/fabric.hpp"
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_reader.hpp"
-#include "core/scene/json_text.hpp"
-#include "core/scene/scene_limits.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_reader.hpp"
+#include "core/io/json_text.hpp"
+#include "core/io/scene_limits.hpp"
 
 namespace drape {
 

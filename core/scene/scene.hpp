@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/model/cloth.hpp"
-#include "core/scene/input_error.hpp"
+#include "core/cloth/cloth.hpp"
+#include "core/io/input_error.hpp"
 #include "core/model/cloth_system.hpp"
 #include "core/manipulations/manipulation_params.hpp"
 

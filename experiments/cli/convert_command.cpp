@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <vector>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_reader.hpp"
-#include "core/scene/output_error.hpp"
-#include "experiments/run/run_files.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_reader.hpp"
+#include "core/io/output_error.hpp"
+#include "experiments/output/run_files.hpp"
+#include "experiments/runner/run_scene.hpp"
 
 namespace drape {
 

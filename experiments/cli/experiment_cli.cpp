@@ -10,10 +10,10 @@
 #include <filesystem>
 #include <iostream>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/output_error.hpp"
-#include "experiments/cli/decimal_integer.hpp"
-#include "experiments/cli/threads_option.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/output_error.hpp"
+#include "experiments/options/decimal_integer.hpp"
+#include "experiments/options/threads_option.hpp"
 #include "experiments/sweep/experiment.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/sweep/experiment_merge.hpp"

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "experiments/run/scene_simulation.hpp"
 #include "integrators/explicit/stability_limit.hpp"
 #include "integrators/arkode/arkode_tables.hpp"

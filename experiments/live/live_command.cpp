@@ -10,17 +10,17 @@
 #include <thread>
 
 #include "core/parallel/parallel_for.hpp"
-#include "core/scene/input_error.hpp"
-#include "core/scene/output_error.hpp"
-#include "core/scene/json_reader.hpp"
-#include "core/scene/json_text.hpp"
-#include "experiments/cli/decimal_integer.hpp"
-#include "experiments/cli/threads_option.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/output_error.hpp"
+#include "core/io/json_reader.hpp"
+#include "core/io/json_text.hpp"
+#include "experiments/options/decimal_integer.hpp"
+#include "experiments/options/threads_option.hpp"
 #include "experiments/live/live_page.hpp"
 #include "experiments/live/live_session.hpp"
 #include "experiments/live/sensor_bridge.hpp"
-#include "experiments/run/run_folder.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/output/run_folder.hpp"
+#include "experiments/runner/run_scene.hpp"
 
 // Last: it includes httplib.h, whose system headers define macros that Eigen's templates
 // (through the scene) trip over.

@@ -9,16 +9,16 @@
 
 #include "core/dummy/dummy_sources.hpp"
 #include "core/input/input_config.hpp"
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "experiments/live/live_hands.hpp"
-#include "experiments/live/live_run_files.hpp"
-#include "experiments/run/event_trace_recorder.hpp"
-#include "experiments/run/frame_recorder.hpp"
-#include "experiments/run/run_folder.hpp"
-#include "experiments/run/run_files.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/output/live_run_files.hpp"
+#include "experiments/output/event_trace_recorder.hpp"
+#include "experiments/output/frame_recorder.hpp"
+#include "experiments/output/run_folder.hpp"
+#include "experiments/output/run_files.hpp"
+#include "experiments/runner/run_scene.hpp"
 #include "experiments/run/scene_simulation.hpp"
-#include "experiments/run/series_writers.hpp"
+#include "experiments/output/series_writers.hpp"
 #include "experiments/viewer/page_data.hpp"
 
 namespace drape {
@@ -190,7 +190,7 @@ void LiveSession::apply_keys() {
 void LiveSession::publish(double wall, bool behind, const nlohmann::json& ended) {
   const Simulation& simulation = m_run->simulation();
   const Eigen::VectorXd& y = simulation.state();
-  // y = [x; v] (core/model/state.hpp): the first 3N values are the positions.
+  // y = [x; v] (core/state/state.hpp): the first 3N values are the positions.
   std::vector<float> positions(static_cast<std::size_t>(y.size() / 2));
   for (std::size_t i = 0; i < positions.size(); ++i)
     positions[i] = static_cast<float>(y[static_cast<Eigen::Index>(i)]);

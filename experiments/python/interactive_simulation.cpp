@@ -5,10 +5,10 @@
 
 #include "core/dummy/dummy_sources.hpp"
 #include "core/input/input_config.hpp"
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "experiments/live/live_hands.hpp"
-#include "experiments/run/provenance.hpp"
-#include "experiments/run/run_folder.hpp"
+#include "experiments/output/provenance.hpp"
+#include "experiments/output/run_folder.hpp"
 #include "experiments/run/scene_simulation.hpp"
 
 namespace drape {

@@ -13,7 +13,7 @@
 
 #include "core/input/hand_track.hpp"
 #include "core/scene/scene.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 
 namespace drape {
 

@@ -2,12 +2,12 @@
 // package around it.
 #include <pybind11/pybind11.h>
 
-#include "experiments/cli/fabrics_command.hpp"
+#include "experiments/catalogue/fabrics_command.hpp"
 #include "experiments/python/python_errors.hpp"
 #include "experiments/python/python_json.hpp"
 #include "experiments/python/python_scene.hpp"
 #include "experiments/python/python_simulation.hpp"
-#include "experiments/run/provenance.hpp"
+#include "experiments/output/provenance.hpp"
 #include "integrators/interface/registry.hpp"
 
 namespace py = pybind11;

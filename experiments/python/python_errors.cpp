@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/output_error.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/output_error.hpp"
 
 namespace py = pybind11;
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_text.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_text.hpp"
 
 namespace py = pybind11;
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/python/python_json.hpp"
 #include "experiments/run/scene_simulation.hpp"

@@ -7,7 +7,7 @@
 #include <functional>
 #include <memory>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "experiments/python/interactive_simulation.hpp"
 #include "experiments/python/python_errors.hpp"
 #include "experiments/python/python_json.hpp"

@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/scene_limits.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/scene_limits.hpp"
 #include "integrators/interface/registry.hpp"
 #include "integrators/newton/reduced_newton_solver.hpp"
 

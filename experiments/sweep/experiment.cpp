@@ -9,13 +9,13 @@
 #include <tuple>
 #include <utility>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_reader.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_reader.hpp"
 #include "core/scene/scene.hpp"
-#include "core/scene/scene_limits.hpp"
+#include "core/io/scene_limits.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "experiments/sweep/plan_size.hpp"
-#include "core/scene/json_text.hpp"
+#include "core/io/json_text.hpp"
 
 namespace drape {
 

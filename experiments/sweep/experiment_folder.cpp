@@ -4,9 +4,9 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_reader.hpp"
-#include "experiments/run/run_folder.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_reader.hpp"
+#include "experiments/output/run_folder.hpp"
 
 namespace drape {
 

@@ -8,8 +8,8 @@
 #include <set>
 #include <nlohmann/json.hpp>
 
-#include "core/scene/input_error.hpp"
-#include "experiments/run/run_files.hpp"
+#include "core/io/input_error.hpp"
+#include "experiments/output/run_files.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/sweep/results_table.hpp"
 #include "experiments/sweep/stored_runs.hpp"

@@ -11,8 +11,8 @@
 #include <set>
 #include <thread>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_reader.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_reader.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/sweep/child_runs.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
@@ -23,9 +23,9 @@
 #include "experiments/sweep/stored_runs.hpp"
 #include "experiments/sweep/run_validation.hpp"
 #include "experiments/sweep/deliberate_crash.hpp"
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 #include "core/parallel/parallel_for.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 
 namespace drape {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 
 namespace drape {
 

@@ -7,7 +7,7 @@
 #include <set>
 #include <unistd.h>
 
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
 
 namespace drape {

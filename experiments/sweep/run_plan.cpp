@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "core/dummy/dummy_sources.hpp"
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_reader.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_reader.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
 #include "experiments/sweep/experiment.hpp"

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "experiments/run/run_files.hpp"
+#include "experiments/output/run_files.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
 
 namespace drape {

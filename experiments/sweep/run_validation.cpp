@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/run/run_limits.hpp"
 #include "experiments/run/scene_simulation.hpp"

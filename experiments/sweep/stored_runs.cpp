@@ -6,9 +6,9 @@
 #include <fstream>
 #include <optional>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_reader.hpp"
-#include "experiments/run/run_folder.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_reader.hpp"
+#include "experiments/output/run_folder.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/sweep/results_table.hpp"
 

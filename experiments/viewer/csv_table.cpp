@@ -6,7 +6,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 
 namespace drape {
 

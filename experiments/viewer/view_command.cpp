@@ -10,12 +10,12 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_text.hpp"
-#include "core/scene/output_error.hpp"
-#include "experiments/live/live_run_files.hpp"
-#include "experiments/run/run_folder.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_text.hpp"
+#include "core/io/output_error.hpp"
+#include "experiments/output/live_run_files.hpp"
+#include "experiments/output/run_folder.hpp"
+#include "experiments/runner/run_scene.hpp"
 #include "experiments/sweep/experiment_folder.hpp"
 #include "experiments/viewer/viewer_page.hpp"
 

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "experiments/viewer/page_data.hpp"
 #include "experiments/viewer/viewer_assets.hpp"
 

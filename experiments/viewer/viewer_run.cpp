@@ -6,9 +6,9 @@
 #include <cmath>
 #include <limits>
 
-#include "core/scene/input_error.hpp"
-#include "core/scene/json_reader.hpp"
-#include "experiments/run/run_folder.hpp"
+#include "core/io/input_error.hpp"
+#include "core/io/json_reader.hpp"
+#include "experiments/output/run_folder.hpp"
 #include "experiments/viewer/csv_table.hpp"
 
 namespace drape {

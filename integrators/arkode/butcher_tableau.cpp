@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/scene/json_reader.hpp"
+#include "core/io/json_reader.hpp"
 
 namespace drape {
 

@@ -5,7 +5,7 @@
 // the colouring, and every sweep over it, is deterministic.
 #include <vector>
 
-#include "core/model/cloth.hpp"
+#include "core/cloth/cloth.hpp"
 
 namespace drape {
 

@@ -2,7 +2,7 @@
 // The explicit steps' update of the state, element by element, on the hot loops' threads
 // (core/parallel): each element's value is the same whatever the split.
 #include "core/model/cloth_system.hpp"
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 #include "core/parallel/parallel_for.hpp"
 
 namespace drape {

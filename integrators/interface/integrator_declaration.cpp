@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/scene/json_reader.hpp"
+#include "core/io/json_reader.hpp"
 
 namespace drape {
 

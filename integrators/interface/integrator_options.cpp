@@ -1,8 +1,8 @@
 #include "integrators/interface/integrator_options.hpp"
 
-#include "core/scene/json_reader.hpp"
+#include "core/io/json_reader.hpp"
 #include "integrators/arkode/butcher_tableau.hpp"
-#include "core/scene/scene_limits.hpp"
+#include "core/io/scene_limits.hpp"
 #include "integrators/interface/registry.hpp"
 
 namespace drape {

@@ -1,6 +1,6 @@
 #include "integrators/interface/registry.hpp"
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "integrators/arkode/arkode_stepper.hpp"
 #include "integrators/arkode/arkode_tables.hpp"
 #include "integrators/bdf2/bdf2.hpp"

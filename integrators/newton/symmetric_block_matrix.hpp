@@ -34,7 +34,7 @@
 // one more pass over the matrix (docs/journal/2026-11-27-assembling-s.md).
 #include <vector>
 
-#include "core/model/state.hpp"
+#include "core/state/state.hpp"
 
 namespace drape::detail {
 

@@ -12,7 +12,7 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
-#include "core/model/cloth.hpp"
+#include "core/cloth/cloth.hpp"
 
 namespace drape {
 

@@ -196,7 +196,7 @@ class RunVibrationTest(runfolder.RunFolderTest):
                   {"t": 2.0, "type": "release", "hand": "left"}]
         runfolder.write_summary(run, events, runfolder.CLOTH_SCENE, sim_time=3.0)
         # Frames every 1 ms to 3 s; those at the hold and the release are event frames (one frame
-        # a time: experiments/run/frame_recorder.cpp).
+        # a time: experiments/output/frame_recorder.cpp).
         step = np.arange(3001) / 1000.0
         t = step
         event = np.zeros(len(t), int)

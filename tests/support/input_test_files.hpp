@@ -11,7 +11,7 @@
 #include <system_error>
 #include <vector>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 
 namespace drape::test {
 

@@ -8,7 +8,7 @@
 
 #include "core/dummy/dummy_sources.hpp"
 #include "core/model/cloth_system.hpp"
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 
 namespace drape::testing {
 

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/dummy/smooth_surface.hpp"
-#include "core/scene/json_reader.hpp"
+#include "core/io/json_reader.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/run/scene_simulation.hpp"
 

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/scene/scene.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 
 namespace drape {
 namespace {

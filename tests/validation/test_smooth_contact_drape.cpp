@@ -15,7 +15,7 @@
 #include "core/dummy/smooth_surface.hpp"
 #include "core/scene/scene.hpp"
 #include "experiments/run/scene_simulation.hpp"
-#include "core/scene/json_reader.hpp"
+#include "core/io/json_reader.hpp"
 
 namespace drape {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/dummy/dress_form.hpp"
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 
 namespace drape {
 namespace {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/dummy/dummy_sources.hpp"
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 
 namespace drape {
 namespace {

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "core/scene/scene.hpp"
 #include "tests/core/scene/scene_fixtures.hpp"
 

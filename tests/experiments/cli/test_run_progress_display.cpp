@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "core/scene/scene.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/scene/scene.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 #include "experiments/run/scene_simulation.hpp"
 
 namespace drape {

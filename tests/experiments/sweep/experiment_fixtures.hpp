@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "experiments/sweep/experiment.hpp"
 #include "experiments/sweep/experiment_runner.hpp"
 

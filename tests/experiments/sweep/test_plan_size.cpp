@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 
 namespace drape {
 namespace {

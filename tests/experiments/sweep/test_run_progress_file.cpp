@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/scene/scene.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "experiments/runner/run_scene.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // The integrator list, the ARKODE tables and the validation of table and linear-solver choices.
 #include <gtest/gtest.h>
 
-#include "core/scene/input_error.hpp"
+#include "core/io/input_error.hpp"
 #include "integrators/interface/registry.hpp"
 #include "tests/support/test_support.hpp"
 
