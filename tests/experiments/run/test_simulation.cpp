@@ -158,17 +158,19 @@ struct CpuBurner : SimulationObserver {
 
 // cpu_seconds() is the process's CPU time over the loop less the observers' (docs/outputs.md):
 // measured around run() with std::clock, the loop's CPU time is cpu_seconds() plus what the
-// observer spent, up to the clock calls; the stepping of a 4 x 5 cloth is a small part of it.
+// observer spent, up to the clock calls. Counted in, the observer's time alone would make
+// cpu_seconds() at least burner.spent; the stepping of a 4 x 5 cloth (19 ms under the address
+// sanitizer) is far below half of it.
 TEST(Simulation, CpuTimeLeavesTheObserversOut) {
   SceneSimulation run(swinging(R"({"name": "implicit-euler", "dt": 0.01})", 0.0));
-  CpuBurner burner(0.002);
+  CpuBurner burner(0.01);
   run.simulation().add_observer(burner);
   const std::clock_t start = std::clock();
   ASSERT_EQ(run.simulation().run().status, "ok");
   const double around = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
-  ASSERT_GT(burner.spent, 50 * 0.002 * 0.99) << "50 steps of 2 ms";
+  ASSERT_GT(burner.spent, 50 * 0.01 * 0.99) << "50 steps of 10 ms";
   EXPECT_GT(run.simulation().cpu_seconds(), 0.0);
-  EXPECT_LT(run.simulation().cpu_seconds(), 0.1 * burner.spent);
+  EXPECT_LT(run.simulation().cpu_seconds(), 0.5 * burner.spent);
   EXPECT_NEAR(run.simulation().cpu_seconds() + burner.spent, around, 0.01 * around);
 }
 
