@@ -21,6 +21,10 @@ namespace drape {
 /// Steps of unequal size (one cut short by an output or event time) use the variable-step
 /// formula (Hairer, Norsett and Wanner, "Solving ODEs I", section III.5): with
 /// w = h_{n+1} / h_n, gamma = h_{n+1} (1 + w) / (1 + 2w) and d = w^2 / (1 + 2w) (y_n - y_{n-1}).
+/// With `linearise_about` = predictor, the one Newton iteration of that equation starts from
+/// the extrapolated predictor y_p = y_n + w (y_n - y_{n-1}) instead of y_n, the Jacobian and f
+/// taken there (the predictor-corrector of BDF codes; Hairer and Wanner, "Solving ODEs II",
+/// section IV.8): still one solve a step, and closer to BDF2's solution.
 /// Started, and restarted at every reset() (events), by one linearised implicit Euler step.
 /// With `solve` = converged, the step's equation itself, y_{n+1} = a + gamma f(y_{n+1}) with
 /// a = y_n + d, solved by the line-search Newton to ARKODE's test (ConvergedStep); the start and
@@ -31,8 +35,8 @@ namespace drape {
 /// per step. Fixed particles are prescribed; then the projection of docs/model.md section 5.
 class Bdf2 final : public Integrator {
  public:
-  /// Reads dt, max_steps, linear_solver, linear_tolerance, max_linear_iters and solve from
-  /// `options` (and with solve = converged the keys ConvergedStep reads).
+  /// Reads dt, max_steps, linear_solver, linear_tolerance, max_linear_iters, solve and
+  /// linearise_about from `options` (and with solve = converged the keys ConvergedStep reads).
   Bdf2(ClothSystem& system, const IntegratorOptions& options);
   void reset(double t, const Eigen::VectorXd& y) override;
   double step(double t_stop) override;
@@ -41,6 +45,8 @@ class Bdf2 final : public Integrator {
   /// The step from m_t to t_next solved to convergence (with history: BDF2's equation with
   /// `gamma`; without: backward Euler's), projected.
   void converged_step(double t_next, double gamma);
+  /// The linearised step from the extrapolated predictor (history ratio w).
+  void corrected_step(double t_next, double gamma, double w);
 
   double m_dt;
   long m_max_steps;
@@ -51,6 +57,7 @@ class Bdf2 final : public Integrator {
   Eigen::VectorXd m_previous;
   double m_previous_t = 0.0;
   bool m_has_history = false;
+  bool m_from_predictor;  // linearise_about = predictor
   Eigen::VectorXd m_start, m_history_term, m_known;  // y_n, d, a = y_n + d
 };
 
