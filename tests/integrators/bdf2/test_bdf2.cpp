@@ -223,6 +223,17 @@ TEST(Bdf2, NeverGainsEnergyOnTheUndampedHangingCloth) {
   }
 }
 
+// Five steps of the circling corner, then the event: the pinned corner is released and `method`
+// reset on the state it reached, which is returned.
+Eigen::VectorXd restart_after_release(Bdf2& method, const testing::CirclingCorner& corner) {
+  method.reset(0.0, corner.start);
+  for (int k = 0; k < 5; ++k) method.step(1.0);
+  corner.system->constraints().release(0);
+  const Eigen::VectorXd y = method.state();
+  method.reset(method.time(), y);
+  return y;
+}
+
 // After reset() (an event) the history is gone: the next step is implicit Euler's from that
 // state. Linearised about y_n it is implicit-euler's step, bit for bit with the direct solve, to
 // CG's tolerance with multigrid CG (whose start projects on each integrator's own last solves).
@@ -237,13 +248,8 @@ TEST(Bdf2, RestartsWithAnImplicitEulerStep) {
     const testing::CirclingCorner corner = testing::circling_corner();
     ClothSystem& s = *corner.system;
     Bdf2 method(s, o);
-    method.reset(0.0, corner.start);
-    for (int k = 0; k < 5; ++k) method.step(1.0);
-    // The event: the pinned corner is released.
-    s.constraints().release(0);
+    const Eigen::VectorXd y = restart_after_release(method, corner);
     const double t = method.time();
-    const Eigen::VectorXd y = method.state();
-    method.reset(t, y);
     method.step(1.0);
     o.name = "implicit-euler";
     ImplicitEuler euler(s, o);
@@ -271,12 +277,8 @@ TEST(Bdf2, RestartsFromThePredictorNearerImplicitEulersSolution) {
   const testing::CirclingCorner corner = testing::circling_corner();
   ClothSystem& s = *corner.system;
   Bdf2 method(s, bdf2_options(1e-2, "sparse-direct"));
-  method.reset(0.0, corner.start);
-  for (int k = 0; k < 5; ++k) method.step(1.0);
-  s.constraints().release(0);
+  const Eigen::VectorXd y = restart_after_release(method, corner);
   const double t = method.time();
-  const Eigen::VectorXd y = method.state();
-  method.reset(t, y);
   method.step(1.0);
   IntegratorOptions linearised = bdf2_options(1e-2, "sparse-direct", "current");
   linearised.name = "implicit-euler";
