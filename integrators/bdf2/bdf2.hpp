@@ -36,7 +36,8 @@ namespace drape {
 /// converged backward Euler (halved as implicit-euler's, the history kept).
 /// Second order (the iteration's error is third order locally; from the predictor, which is
 /// O(h^2) from the solution, the step is BDF2's own to a small fraction of its error),
-/// A-stable for the linear problem; one force evaluation and one Jacobian
+/// A-stable for the linear problem; one force evaluation (one more, of the body forces, at a
+/// start from the predictor) and one Jacobian
 /// per step. Fixed particles are prescribed; then the projection of docs/model.md section 5.
 class Bdf2 final : public Integrator {
  public:

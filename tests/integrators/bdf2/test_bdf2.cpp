@@ -80,7 +80,8 @@ TEST(Bdf2, TrajectoryIsSecondOrder) {
   const Eigen::Index n3 = reference.size() / 2;
   const std::vector<double> dts = {4e-4, 2e-4, 1e-4, 5e-5};
   std::map<std::string, std::vector<double>> errors;
-  for (const char* run : {"pcg-reduced", "pcg-multigrid", "sparse-direct", "current", "converged"}) {
+  for (const char* run :
+       {"pcg-reduced", "pcg-multigrid", "sparse-direct", "current", "converged"}) {
     const std::string name = run;
     for (const double dt : dts) {
       Bdf2 method(*s, name == "converged" ? converged_options(dt, 1e-10)
