@@ -17,7 +17,8 @@ Bdf2::Bdf2(ClothSystem& system, const IntegratorOptions& options)
       m_max_steps(options.max_steps),
       m_solver(system, *reduced_solve_named(linear_solver_of(options)), ForceSplit::all,
                linear_tolerance_of(options), options.max_linear_iters),
-      m_linearised(system, m_solver) {
+      m_linearised(system, m_solver),
+      m_from_predictor(options.setting_choice("linearise_about") == "predictor") {
   if (uses_line_search(options)) m_converged.emplace(system, m_solver, options);
 }
 
@@ -31,16 +32,20 @@ double Bdf2::step(double t_stop) {
   const double h = t_next - m_t;
   m_start = m_y;
   double gamma = h;  // without history: implicit Euler's step
+  double w = 0.0;
   if (m_has_history) {
-    const double w = h / (m_t - m_previous_t);
+    w = h / (m_t - m_previous_t);
     m_history_term = (w * w / (1.0 + 2.0 * w)) * (m_y - m_previous);
     gamma = h * (1.0 + w) / (1.0 + 2.0 * w);
   }
   if (m_converged) {
     converged_step(t_next, gamma);
   } else {
-    m_linearised.take(m_t, h, gamma, m_has_history ? &m_history_term : nullptr, m_y,
-                      m_counters);
+    if (m_from_predictor)
+      corrected_step(t_next, h, gamma, w);
+    else
+      m_linearised.take(m_t, h, gamma, m_has_history ? &m_history_term : nullptr, m_y,
+                        m_counters);
     m_system.project(t_next, positions(), velocities());
   }
   // A step cut short (a sliver before an output or event time) is not kept as the history's
@@ -53,6 +58,37 @@ double Bdf2::step(double t_stop) {
     m_has_history = true;
   }
   return accept_fixed_step(t_next);
+}
+
+void Bdf2::corrected_step(double t_next, double h, double gamma, double w) {
+  const Eigen::Index n3 = m_y.size() / 2;
+  if (m_has_history) {
+    // The line through the two last points, y_p = y_n + w (y_n - y_{n-1}); the offset a - y_p
+    // with a = y_n + d is (w^2 / (1 + 2w) - w) (y_n - y_{n-1}).
+    m_known = (w * w / (1.0 + 2.0 * w) - w) * (m_y - m_previous);
+    m_y += w * (m_y - m_previous);
+  } else {
+    // Implicit Euler's start from the body forces' step (gravity and air damping, not the
+    // stiff springs and contact): v_p = v_n + h a_body, x_p = x_n + h v_p, the prediction of
+    // XPBD and VBD (Macklin et al. 2016, algorithm 1; Chen et al. 2024, "Initialization"). It meets
+    // the position rows x = x_n + h v of the step's equation, so the correction is in the
+    // velocities. The offset a - y_p with a = y_n is [-h v_p; -h a_body].
+    m_known.resize(m_y.size());
+    m_system.rhs(m_t, m_y, m_known, ForceSplit::body);
+    ++m_counters.rhs_evals;
+    m_known.tail(n3) *= -h;
+    m_y.tail(n3) -= m_known.tail(n3);
+    m_known.head(n3) = -h * m_y.tail(n3);
+    m_y.head(n3) -= m_known.head(n3);
+  }
+  // Fixed particles start on their prescribed state at t_next (their rows of the step are it).
+  const ConstraintSet& constraints = m_system.constraints();
+  for (const int i : constraints.fixed_particles()) {
+    const Trajectory& path = *constraints.trajectory(i);
+    m_y.segment<3>(3 * i) = path.position(t_next);
+    m_y.segment<3>(n3 + 3 * i) = path.velocity(t_next);
+  }
+  m_linearised.correct(t_next, gamma, m_known, m_y, m_counters);
 }
 
 void Bdf2::converged_step(double t_next, double gamma) {
@@ -81,7 +117,10 @@ IntegratorDeclaration bdf2_declaration() {
   return {"bdf2", "implicit", 2, false,
           "Choi-Ko BDF2, linearised (one solve a step, CG or sparse LDLT on the 3N velocity "
           "system) or converged by the line-search Newton",
-          {},
+          {SettingKey::choice("linearise_about", "predictor", {"predictor", "current"},
+                              "solve = linearised: the one Newton iteration starts from the "
+                              "predictor (the extrapolation; at a start the body forces' step) "
+                              "or from y_n (Choi and Ko)")},
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<Bdf2>(system, options);
           },

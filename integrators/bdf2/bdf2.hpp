@@ -14,25 +14,35 @@ namespace drape {
 /// the second-order backward differentiation formula
 ///   x_{n+1} - 4/3 x_n + 1/3 x_{n-1} = 2/3 h v_{n+1},
 ///   v_{n+1} - 4/3 v_n + 1/3 v_{n-1} = 2/3 h M^-1 F(x_{n+1}, v_{n+1}),
-/// linearised once about (x_n, v_n): one solve a step of the 3N velocity system
-///   (M - 2/3 h D - 4/9 h^2 K) dv = M r_v + 2/3 h K r_x,
-///   r = 2/3 h f(y_n) + (y_n - y_{n-1}) / 3,   dx = r_x + 2/3 h dv,
+/// solved by one Newton iteration a step, one solve of the 3N velocity system
+///   (M - gamma D - gamma^2 K) dv = M r_v + gamma K r_x,   dx = r_x + gamma dv,
 /// with the definite Jacobian and the linear solvers of implicit-euler (linearised_step.hpp).
+/// By default (`linearise_about` = predictor) the iteration starts from the predictor
+/// y_p = y_n + w (y_n - y_{n-1}), the line through the last two points, with f and the Jacobian
+/// taken there, r = gamma f(y_p) + y_n + d - y_p, as BDF codes start their Newton iteration
+/// from the explicitly predicted value (SUNDIALS CVODE user guide, "Mathematical
+/// considerations"); `linearise_about` = current starts from y_n as Choi and Ko do,
+/// r = gamma f(y_n) + d.
 /// Steps of unequal size (one cut short by an output or event time) use the variable-step
 /// formula (Hairer, Norsett and Wanner, "Solving ODEs I", section III.5): with
-/// w = h_{n+1} / h_n, gamma = h_{n+1} (1 + w) / (1 + 2w) and d = w^2 / (1 + 2w) (y_n - y_{n-1}).
-/// Started, and restarted at every reset() (events), by one linearised implicit Euler step.
+/// w = h_{n+1} / h_n, gamma = h_{n+1} (1 + w) / (1 + 2w) and d = w^2 / (1 + 2w) (y_n - y_{n-1})
+/// (equal steps: gamma = 2/3 h, d = (y_n - y_{n-1}) / 3).
+/// Started, and restarted at every reset() (events), by one linearised implicit Euler step,
+/// from the predictor the body forces' step (v_p = v_n + h a_body, x_p = x_n + h v_p; gravity
+/// and air damping, not the stiff springs), or from y_n with linearise_about = current.
 /// With `solve` = converged, the step's equation itself, y_{n+1} = a + gamma f(y_{n+1}) with
 /// a = y_n + d, solved by the line-search Newton to ARKODE's test (ConvergedStep); the start and
 /// restarts are converged backward Euler steps, and a step whose solve fails is taken by
 /// converged backward Euler (halved as implicit-euler's, the history kept).
-/// Second order (the linearisation's error is third order locally where the definite Jacobian
-/// is the exact one), A-stable for the linear problem; one force evaluation and one Jacobian
+/// Second order (the iteration's error is third order locally; from the predictor, which is
+/// O(h^2) from the solution, the step is BDF2's own to a small fraction of its error),
+/// A-stable for the linear problem; one force evaluation (one more, of the body forces, at a
+/// start from the predictor) and one Jacobian
 /// per step. Fixed particles are prescribed; then the projection of docs/model.md section 5.
 class Bdf2 final : public Integrator {
  public:
-  /// Reads dt, max_steps, linear_solver, linear_tolerance, max_linear_iters and solve from
-  /// `options` (and with solve = converged the keys ConvergedStep reads).
+  /// Reads dt, max_steps, linear_solver, linear_tolerance, max_linear_iters, solve and
+  /// linearise_about from `options` (and with solve = converged the keys ConvergedStep reads).
   Bdf2(ClothSystem& system, const IntegratorOptions& options);
   void reset(double t, const Eigen::VectorXd& y) override;
   double step(double t_stop) override;
@@ -41,6 +51,9 @@ class Bdf2 final : public Integrator {
   /// The step from m_t to t_next solved to convergence (with history: BDF2's equation with
   /// `gamma`; without: backward Euler's), projected.
   void converged_step(double t_next, double gamma);
+  /// The linearised step of size h from the predictor: with history (ratio w) BDF2's from the
+  /// extrapolation, without it implicit Euler's from the body forces' step.
+  void corrected_step(double t_next, double h, double gamma, double w);
 
   double m_dt;
   long m_max_steps;
@@ -51,6 +64,7 @@ class Bdf2 final : public Integrator {
   Eigen::VectorXd m_previous;
   double m_previous_t = 0.0;
   bool m_has_history = false;
+  bool m_from_predictor;  // linearise_about = predictor
   Eigen::VectorXd m_start, m_history_term, m_known;  // y_n, d, a = y_n + d
 };
 

@@ -4,18 +4,29 @@ namespace drape {
 
 void LinearisedStep::take(double t, double h, double gamma, const Eigen::VectorXd* history,
                           Eigen::VectorXd& y, IntegratorCounters& counters) {
+  iterate(t, t + h, gamma, history, y, counters);
+}
+
+void LinearisedStep::correct(double t_next, double gamma, const Eigen::VectorXd& offset,
+                             Eigen::VectorXd& y, IntegratorCounters& counters) {
+  iterate(t_next, t_next, gamma, &offset, y, counters);
+}
+
+void LinearisedStep::iterate(double t, double t_next, double gamma,
+                             const Eigen::VectorXd* offset, Eigen::VectorXd& y,
+                             IntegratorCounters& counters) {
   const Eigen::Index n3 = y.size() / 2;
   const ConstVecMap x(y.data(), n3), v(y.data() + n3, n3);
   m_residual.resize(y.size());
   m_system.rhs(t, y, m_residual);
   ++counters.rhs_evals;
   m_residual *= gamma;
-  if (history) m_residual += *history;
+  if (offset) m_residual += *offset;
   const ConstraintSet& constraints = m_system.constraints();
   for (const int i : constraints.fixed_particles()) {
     const Trajectory& path = *constraints.trajectory(i);
-    m_residual.segment<3>(3 * i) = path.position(t + h) - particle(x, i);
-    m_residual.segment<3>(n3 + 3 * i) = path.velocity(t + h) - particle(v, i);
+    m_residual.segment<3>(3 * i) = path.position(t_next) - particle(x, i);
+    m_residual.segment<3>(n3 + 3 * i) = path.velocity(t_next) - particle(v, i);
   }
   m_solver.update(x, v, gamma);
   ++counters.jacobian_setups;

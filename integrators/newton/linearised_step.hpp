@@ -29,8 +29,18 @@ class LinearisedStep {
   /// convergence failure when CG stops at its iteration limit.
   void take(double t, double h, double gamma, const Eigen::VectorXd* history,
             Eigen::VectorXd& y, IntegratorCounters& counters);
+  /// One Newton iteration of z = a + gamma f(t_next, z) started from a predictor z_0 = y
+  /// instead of y_n: (I - gamma J(z_0)) dz = gamma f(t_next, z_0) + (a - z_0), y += dz;
+  /// `offset` is a - z_0 (its fixed particles' rows unused: their dz is the prescribed motion
+  /// to t_next). Books as take() does.
+  void correct(double t_next, double gamma, const Eigen::VectorXd& offset, Eigen::VectorXd& y,
+               IntegratorCounters& counters);
 
  private:
+  /// The Newton iteration from y with f at t, fixed particles moved onto their path at t_next.
+  void iterate(double t, double t_next, double gamma, const Eigen::VectorXd* offset,
+               Eigen::VectorXd& y, IntegratorCounters& counters);
+
   const ClothSystem& m_system;
   ReducedNewtonSolver& m_solver;
   Eigen::VectorXd m_residual, m_increment;

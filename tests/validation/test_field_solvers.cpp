@@ -54,17 +54,26 @@ TEST(FieldSolvers, CombinationFourAtTheFrameHasLeapfrogsEvents) {
 // The cloth falls from horizontal and swings with no damping. Backward Euler dissipates; at
 // their defaults the unconverged methods must not add energy either (XPBD's 80 substeps and
 // VBD's 20 sweeps are the fewest that do not, docs/integrators/xpbd.md and vbd.md). Nor does
-// BDF2 with solve = converged, run 1 s (past the peak of the linearised step at 0.1 s; its 5 s
-// are in docs/integrators/bdf2.md); its one linearised solve a step (the default) overshoots the
-// stretch of rotating springs, as implicit-euler's does (docs/integrators/bdf2.md, "Energy").
+// BDF2 with solve = converged, run 1 s (its 5 s are in docs/integrators/bdf2.md). BDF2's one
+// linearised solve a step from its predictor (the default) ends one step, at 0.067 s, 5.7e-6 J
+// (4.8e-5 of E(0)) above the start: one Newton iteration lands on the tangent of the rotating
+// springs' stretch, off by the square of the predictor's error; it may rise 1e-4 of E(0), no
+// more. From y_n it rose 0.45 (docs/integrators/bdf2.md, "Energy").
 TEST(FieldSolvers, UndampedHangingClothNeverRisesAboveItsStartAtTheFrame) {
-  const std::pair<const char*, std::vector<std::string>> runs[] = {
-      {"xpbd", {}}, {"projective-dynamics", {}}, {"vbd", {}},
-      {"bdf2", {"integrator.solve=converged", "duration=1"}}};
-  for (const auto& [method, overrides] : runs) {
+  struct Run {
+    const char* method;
+    std::vector<std::string> overrides;
+    double rise;  // the largest energy rise allowed, relative to E(0)
+  };
+  const Run runs[] = {{"xpbd", {}, 0.0},
+                      {"projective-dynamics", {}, 0.0},
+                      {"vbd", {}, 0.0},
+                      {"bdf2", {}, 1e-4},
+                      {"bdf2", {"integrator.solve=converged", "duration=1"}, 0.0}};
+  for (const auto& [method, overrides, rise] : runs) {
     const RunOutcome outcome = run("hanging_cloth_undamped.json", method, 1.0 / 30.0, overrides);
     ASSERT_EQ(outcome.status, "ok") << method << ": " << outcome.reason;
-    EXPECT_LE(outcome.summary["energy_rise_max_rel"].get<double>(), 0.0) << method;
+    EXPECT_LE(outcome.summary["energy_rise_max_rel"].get<double>(), rise) << method;
     EXPECT_LT(outcome.summary["energy_final"].get<double>(),
               0.99 * outcome.summary["energy_initial"].get<double>())
         << method << ": it fell and swung, and lost energy";

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/SparseLU>
+#include <map>
 
 #include "integrators/bdf2/bdf2.hpp"
 #include "integrators/implicit_euler/implicit_euler.hpp"
@@ -15,13 +16,16 @@
 namespace drape {
 namespace {
 
-// bdf2 at step dt with its linear systems solved to round-off, read as a scene's would be.
-IntegratorOptions bdf2_options(double dt, const std::string& linear_solver) {
+// bdf2 at step dt with its linear systems solved to round-off, linearised about `about`, read
+// as a scene's would be.
+IntegratorOptions bdf2_options(double dt, const std::string& linear_solver,
+                               const std::string& about = "predictor") {
   return read_integrator_options({{"name", "bdf2"},
                                   {"dt", dt},
                                   {"linear_solver", linear_solver},
                                   {"linear_tolerance", 1e-12},
-                                  {"max_linear_iters", 1000}},
+                                  {"max_linear_iters", 1000},
+                                  {"linearise_about", about}},
                                  "test", "integrator");
 }
 
@@ -66,23 +70,32 @@ double energy_of(const ClothSystem& s, const Eigen::VectorXd& y) {
 }
 
 // The position error at t_end = 0.1 s against the exact trajectory, at dt = 4e-4 s halved three
-// times: its fitted slope is BDF2's order, linearised with each linear solver and converged.
+// times: its fitted slope is BDF2's order, linearised about the predictor with each linear
+// solver, about y_n, and converged. The step from the predictor is BDF2's own solution to
+// within a thousandth of the error (its Newton iteration starts O(h^2) from it, not O(h)).
 TEST(Bdf2, TrajectoryIsSecondOrder) {
   auto s = hanging_chain(6, 0.0, 0.0);
   const Eigen::VectorXd y0 = swung_chain(*s);
   const Eigen::VectorXd reference = testing::reference_trajectory(*s, y0, 0.1);
   const Eigen::Index n3 = reference.size() / 2;
-  for (const char* run : {"pcg-reduced", "pcg-multigrid", "sparse-direct", "converged"}) {
-    const std::vector<double> dts = {4e-4, 2e-4, 1e-4, 5e-5};
-    std::vector<double> errors;
+  const std::vector<double> dts = {4e-4, 2e-4, 1e-4, 5e-5};
+  std::map<std::string, std::vector<double>> errors;
+  for (const char* run :
+       {"pcg-reduced", "pcg-multigrid", "sparse-direct", "current", "converged"}) {
+    const std::string name = run;
     for (const double dt : dts) {
-      Bdf2 method(*s, std::string(run) == "converged" ? converged_options(dt, 1e-10)
-                                                      : bdf2_options(dt, run));
+      Bdf2 method(*s, name == "converged" ? converged_options(dt, 1e-10)
+                      : name == "current" ? bdf2_options(dt, "pcg-multigrid", "current")
+                                          : bdf2_options(dt, run));
       method.reset(0.0, y0);
-      errors.push_back((testing::run_until(method, 0.1) - reference).head(n3).norm());
+      errors[name].push_back((testing::run_until(method, 0.1) - reference).head(n3).norm());
     }
-    EXPECT_NEAR(testing::fitted_order(dts, errors), 2.0, 0.15) << run;
+    EXPECT_NEAR(testing::fitted_order(dts, errors[name]), 2.0, 0.15) << run;
   }
+  for (std::size_t k = 0; k < dts.size(); ++k)
+    EXPECT_NEAR(errors["sparse-direct"][k], errors["converged"][k],
+                1e-3 * errors["converged"][k])
+        << dts[k];
 }
 
 // The weighted RMS norm (ARKODE's weights 1 / (rtol |y_n| + atol)) of the Newton correction
@@ -150,15 +163,17 @@ TEST(Bdf2, StaysSecondOrderWithStepsCutShortAtStopTimes) {
   const Eigen::VectorXd reference = testing::reference_trajectory(*s, y0, 0.1);
   const Eigen::Index n3 = reference.size() / 2;
   const std::vector<double> dts = {4e-4, 2e-4, 1e-4, 5e-5};
-  std::vector<double> errors;
-  for (const double dt : dts) {
-    Bdf2 method(*s, bdf2_options(dt, "sparse-direct"));
-    method.reset(0.0, y0);
-    for (int k = 1; method.time() < 0.1 - 1e-12; ++k)
-      testing::run_until(method, std::min(0.1, 0.0073 * k));
-    errors.push_back((method.state() - reference).head(n3).norm());
+  for (const char* about : {"predictor", "current"}) {
+    std::vector<double> errors;
+    for (const double dt : dts) {
+      Bdf2 method(*s, bdf2_options(dt, "sparse-direct", about));
+      method.reset(0.0, y0);
+      for (int k = 1; method.time() < 0.1 - 1e-12; ++k)
+        testing::run_until(method, std::min(0.1, 0.0073 * k));
+      errors.push_back((method.state() - reference).head(n3).norm());
+    }
+    EXPECT_NEAR(testing::fitted_order(dts, errors), 2.0, 0.15) << about;
   }
-  EXPECT_NEAR(testing::fitted_order(dts, errors), 2.0, 0.15);
 }
 
 // At a fixed point y_{n+1} = y_n = y_{n-1} the linearised step reads gamma f(y_n) = 0: what a
@@ -170,10 +185,12 @@ TEST(Bdf2, SettlesOnTheNewtonEquilibriumAtTheFrameStep) {
   for (const auto& s : systems) {
     const Eigen::VectorXd expected = testing::newton_equilibrium(*s);
     for (const char* solver : {"pcg-reduced", "pcg-multigrid", "sparse-direct"}) {
-      Bdf2 method(*s, bdf2_options(1.0 / 30.0, solver));
-      const Eigen::VectorXd x = testing::settle(method, *s);
-      EXPECT_LT((x - expected).lpNorm<Eigen::Infinity>(), 1e-8)
-          << s->num_particles() << " particles, " << solver;
+      for (const char* about : {"predictor", "current"}) {
+        Bdf2 method(*s, bdf2_options(1.0 / 30.0, solver, about));
+        const Eigen::VectorXd x = testing::settle(method, *s);
+        EXPECT_LT((x - expected).lpNorm<Eigen::Infinity>(), 1e-8)
+            << s->num_particles() << " particles, " << solver << ", " << about;
+      }
     }
   }
 }
@@ -188,42 +205,52 @@ TEST(Bdf2, NeverGainsEnergyOnTheUndampedHangingCloth) {
   s->constraints().fix_at(0, s->cloth().rest_positions.segment<3>(0));
   const Eigen::VectorXd y0 = s->initial_state(0.0);
   const double start = energy_of(*s, y0);
-  IntegratorOptions o = bdf2_options(1.0 / 30.0, "pcg-multigrid");
-  Bdf2 method(*s, o);
-  method.reset(0.0, y0);
-  o.name = "implicit-euler";
-  ImplicitEuler euler(*s, o);
-  euler.reset(0.0, y0);
-  double highest = -1e300;
-  while (method.time() < 3.0 - 1e-12) {
-    method.step(3.0);
-    euler.step(3.0);
-    highest = std::max(highest, energy_of(*s, method.state()));
+  for (const char* about : {"current", "predictor"}) {
+    IntegratorOptions o = bdf2_options(1.0 / 30.0, "pcg-multigrid", about);
+    Bdf2 method(*s, o);
+    method.reset(0.0, y0);
+    o = bdf2_options(1.0 / 30.0, "pcg-multigrid");
+    o.name = "implicit-euler";
+    ImplicitEuler euler(*s, o);
+    euler.reset(0.0, y0);
+    double highest = -1e300;
+    while (method.time() < 3.0 - 1e-12) {
+      method.step(3.0);
+      euler.step(3.0);
+      highest = std::max(highest, energy_of(*s, method.state()));
+    }
+    EXPECT_LE(highest, start) << about;
+    EXPECT_GT(energy_of(*s, method.state()), energy_of(*s, euler.state())) << about;
   }
-  EXPECT_LE(highest, start);
-  EXPECT_GT(energy_of(*s, method.state()), energy_of(*s, euler.state()));
+}
+
+// Five steps of the circling corner, then the event: the pinned corner is released and `method`
+// reset on the state it reached, which is returned.
+Eigen::VectorXd restart_after_release(Bdf2& method, const testing::CirclingCorner& corner) {
+  method.reset(0.0, corner.start);
+  for (int k = 0; k < 5; ++k) method.step(1.0);
+  corner.system->constraints().release(0);
+  const Eigen::VectorXd y = method.state();
+  method.reset(method.time(), y);
+  return y;
 }
 
 // After reset() (an event) the history is gone: the next step is implicit Euler's from that
-// state, bit for bit with the direct solve, to CG's tolerance with multigrid CG (whose start
-// projects on each integrator's own last solves). With solve = converged it is implicit-euler's
-// converged step (bit for bit: the Newton's CG starts from zero).
+// state. Linearised about y_n it is implicit-euler's step, bit for bit with the direct solve, to
+// CG's tolerance with multigrid CG (whose start projects on each integrator's own last solves).
+// With solve = converged it is implicit-euler's converged step (bit for bit: the Newton's CG
+// starts from zero).
 TEST(Bdf2, RestartsWithAnImplicitEulerStep) {
-  std::vector<IntegratorOptions> runs = {bdf2_options(1e-2, "sparse-direct"),
-                                         bdf2_options(1e-2, "pcg-multigrid"),
+  std::vector<IntegratorOptions> runs = {bdf2_options(1e-2, "sparse-direct", "current"),
+                                         bdf2_options(1e-2, "pcg-multigrid", "current"),
                                          converged_options(1e-2, 1e-6)};
   for (IntegratorOptions& o : runs) {
     const bool exact = o.linear_solver == "sparse-direct" || o.solve == "converged";
     const testing::CirclingCorner corner = testing::circling_corner();
     ClothSystem& s = *corner.system;
     Bdf2 method(s, o);
-    method.reset(0.0, corner.start);
-    for (int k = 0; k < 5; ++k) method.step(1.0);
-    // The event: the pinned corner is released.
-    s.constraints().release(0);
+    const Eigen::VectorXd y = restart_after_release(method, corner);
     const double t = method.time();
-    const Eigen::VectorXd y = method.state();
-    method.reset(t, y);
     method.step(1.0);
     o.name = "implicit-euler";
     ImplicitEuler euler(s, o);
@@ -241,6 +268,34 @@ TEST(Bdf2, RestartsWithAnImplicitEulerStep) {
     EXPECT_GT((method.state() - euler.state()).lpNorm<Eigen::Infinity>(), 1e-6);
     EXPECT_EQ(method.counters().resets, 1);
   }
+}
+
+// Linearised about the predictor, the restart step is one Newton iteration of implicit Euler's
+// equation from the body forces' step (no springs): nearer that equation's solution (converged
+// implicit-euler, computed by the line-search Newton) than implicit-euler's one iteration from
+// y_n.
+TEST(Bdf2, RestartsFromThePredictorNearerImplicitEulersSolution) {
+  const testing::CirclingCorner corner = testing::circling_corner();
+  ClothSystem& s = *corner.system;
+  Bdf2 method(s, bdf2_options(1e-2, "sparse-direct"));
+  const Eigen::VectorXd y = restart_after_release(method, corner);
+  const double t = method.time();
+  method.step(1.0);
+  IntegratorOptions linearised = bdf2_options(1e-2, "sparse-direct", "current");
+  linearised.name = "implicit-euler";
+  IntegratorOptions converged = converged_options(1e-2, 1e-12);
+  converged.name = "implicit-euler";
+  std::vector<Eigen::VectorXd> ends;
+  for (const IntegratorOptions& o : {linearised, converged}) {
+    ImplicitEuler euler(s, o);
+    euler.reset(t, y);
+    euler.step(1.0);
+    ends.push_back(euler.state());
+  }
+  const double from_predictor = (method.state() - ends[1]).lpNorm<Eigen::Infinity>();
+  const double from_current = (ends[0] - ends[1]).lpNorm<Eigen::Infinity>();
+  EXPECT_LT(from_predictor, from_current);
+  EXPECT_EQ(method.counters().resets, 1);
 }
 
 std::string error_of(const nlohmann::json& options) {
@@ -278,6 +333,13 @@ TEST(Bdf2, ReadsTheLinearSolverKeysAndRejectsOthers) {
   bad_solve["solve"] = "exact";
   EXPECT_EQ(error_of(bad_solve), "scene.json: integrator.solve: unknown solve 'exact' (one of: "
                                  "linearised, converged)");
+  nlohmann::json current = plain;
+  current["linearise_about"] = "current";
+  EXPECT_EQ(error_of(current), "no error");
+  nlohmann::json bad_about = plain;
+  bad_about["linearise_about"] = "midpoint";
+  EXPECT_EQ(error_of(bad_about), "scene.json: integrator.linearise_about: unknown value "
+                                 "'midpoint' (one of predictor, current, default predictor)");
   nlohmann::json bad_solver = plain;
   bad_solver["linear_solver"] = "gmres";
   EXPECT_EQ(error_of(bad_solver).rfind("scene.json: integrator.linear_solver: ", 0), 0u);
