@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "experiments/benchmarks/draped_cloth.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace drape {
 namespace {
