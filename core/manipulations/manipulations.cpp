@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/manipulations/hold_ramp.hpp"
+#include "core/manipulations/hold_search.hpp"
 #include "core/manipulations/mapping.hpp"
 
 namespace drape {
@@ -90,8 +91,7 @@ void Manipulator::copy_state_from(const Manipulator& other) {
   m_hands = other.m_hands;
   m_attaching = other.m_attaching;
   m_next_key = other.m_next_key;
-  m_previous_update = other.m_previous_update;
-  m_previous_positions = other.m_previous_positions;
+  m_hold_search = other.m_hold_search;
   m_events = other.m_events;
 }
 
@@ -122,63 +122,11 @@ void Manipulator::ignore(double t, const std::string& key, const std::string& re
   m_events.push_back(e);
 }
 
-int Manipulator::nearest_free_particle(const Vec3& p, const Eigen::VectorXd& y,
-                                       double& distance) const {
-  const auto& fixed = m_system.constraints().mask();
-  int best = -1;
-  double best2 = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < m_system.num_particles(); ++i) {
-    if (fixed[i]) continue;
-    const double d2 = (y.segment<3>(3 * i) - p).squaredNorm();
-    if (d2 < best2) best2 = d2, best = i;
-  }
-  distance = std::sqrt(best2);
-  return best;
-}
-
-// A hold takes the particle the hand reached first, located inside the step to within
-// hold_search_interval (docs/model.md section 7, "Hold"), so that the particle does not depend
-// on the step: at 1/30 s the hand found at the step's end is up to 33 ms further on, nearer
-// another particle, and the cloth has moved on too. Steps no longer than the interval test only
-// their end.
-constexpr double hold_search_interval = 1e-3;
-
-int Manipulator::first_reached_particle(Hand hand, double t, const Eigen::VectorXd& y) const {
-  const double t0 = m_previous_update;
-  const int samples = std::isfinite(t0) && t > t0
-                          ? std::max(1, static_cast<int>(std::ceil((t - t0) / hold_search_interval - 1e-9)))
-                          : 1;
-  // The cloth between the step's ends moves linearly (first-order dense output, as the hand
-  // track's own interpolation between frames); without the start's positions, it is the end's.
-  const Eigen::Index n3 = 3 * m_system.num_particles();
-  const bool interpolate = samples > 1 && m_previous_positions.size() == n3;
-  Eigen::VectorXd cloth = y.head(n3);
-  for (int k = 1; k <= samples; ++k) {
-    const double tk = k == samples ? t : t0 + (t - t0) * k / samples;
-    const auto motion = m_track->motion(hand, tk);
-    if (!motion || !motion->available) continue;
-    if (interpolate) {
-      const double s = static_cast<double>(k) / samples;
-      cloth = (1.0 - s) * m_previous_positions + s * y.head(n3);
-    }
-    double distance = 0.0;
-    const int candidate = nearest_free_particle(motion->position, cloth, distance);
-    if (candidate >= 0 && distance < m_params.hold_threshold) return candidate;
-  }
-  return -1;
-}
-
-void Manipulator::keep_positions_for_hold_search(double t, const Eigen::VectorXd& y) {
-  // Needed only when a hand may hold in the next step and that step is longer than the search
-  // interval (assumed as long as this one: fixed steps; the first step is assumed long).
-  const double last_step = t - m_previous_update;
-  const bool long_steps = !std::isfinite(m_previous_update) || last_step > hold_search_interval;
-  bool may_hold = false;
-  for (const HandState& h : m_hands) may_hold = may_hold || h.held < 0;
-  if (m_track && may_hold && long_steps)
-    m_previous_positions = y.head(3 * m_system.num_particles());
-  else
-    m_previous_positions.resize(0);
+bool Manipulator::a_hand_may_hold() const {
+  if (!m_track) return false;
+  for (const HandState& h : m_hands)
+    if (h.held < 0) return true;
+  return false;
 }
 
 std::optional<Eigen::VectorXd> Manipulator::update(double t, const Eigen::VectorXd& y) {
@@ -202,15 +150,13 @@ std::optional<Eigen::VectorXd> Manipulator::update(double t, const Eigen::Vector
     update_holds(t, state, changed);
   }
   if (!changed) {
-    keep_positions_for_hold_search(t, y);
-    m_previous_update = t;
+    m_hold_search.finish_update(t, y, m_system.num_particles(), a_hand_may_hold());
     return std::nullopt;
   }
   Eigen::VectorXd& out = state.edit();
   const Eigen::Index n3 = 3 * m_system.num_particles();
   m_system.constraints().project(t, out.head(n3), out.tail(n3));
-  keep_positions_for_hold_search(t, out);
-  m_previous_update = t;
+  m_hold_search.finish_update(t, out, m_system.num_particles(), a_hand_may_hold());
   return state.take();
 }
 
@@ -383,7 +329,8 @@ void Manipulator::update_holds(double t, detail::StateEdit& state, bool& changed
     }
     if (!motion) continue;
     double distance = 0.0;
-    const int candidate = nearest_free_particle(motion->position, state.current(), distance);
+    const int candidate =
+        nearest_free_particle(m_system, motion->position, state.current(), distance);
     if (candidate < 0) continue;
     if (!h.armed) {
       // After a release the hand is still at the particle: it must move away before it can
@@ -395,7 +342,8 @@ void Manipulator::update_holds(double t, detail::StateEdit& state, bool& changed
       continue;
     }
     if (distance >= m_params.hold_threshold) continue;
-    const int held = first_reached_particle(h.hand, t, state.current());
+    const int held = m_hold_search.first_reached_particle(m_system, *m_track, h.hand, t,
+                                                          state.current(), m_params.hold_threshold);
     h.held = held;
     const Eigen::Index n3 = 3 * m_system.num_particles();
     const Vec3 x = state.current().segment<3>(3 * held);
@@ -424,7 +372,7 @@ std::vector<HandStatus> Manipulator::hands(double t, const Eigen::VectorXd& y) c
     if (motion && motion->available) {
       s.available = true;
       s.position = motion->position;
-      s.candidate = nearest_free_particle(s.position, y, s.distance);
+      s.candidate = nearest_free_particle(m_system, s.position, y, s.distance);
     }
     out.push_back(s);
   }

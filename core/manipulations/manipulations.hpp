@@ -10,6 +10,7 @@
 
 #include "core/model/cloth_system.hpp"
 #include "core/input/hand_track.hpp"
+#include "core/manipulations/hold_search.hpp"
 #include "core/manipulations/manipulation_params.hpp"
 
 namespace drape {
@@ -95,12 +96,8 @@ class Manipulator {
   /// The held particle's trajectory: the hand, reached through a ramp when hold_ramp > 0.
   std::shared_ptr<const Trajectory> hold_trajectory(double t, Hand hand, const Vec3& x,
                                                     const Vec3& v) const;
-  int nearest_free_particle(const Vec3& p, const Eigen::VectorXd& y, double& distance) const;
-  /// The free particle `hand` came within the hold threshold of first over (previous update,
-  /// t], the cloth moving linearly from the previous update's positions to `y`'s; -1 if none.
-  int first_reached_particle(Hand hand, double t, const Eigen::VectorXd& y) const;
-  /// Keeps the cloth's positions at t for the next step's hold search when it may need them.
-  void keep_positions_for_hold_search(double t, const Eigen::VectorXd& y);
+  /// Whether a hand that holds nothing may take a particle in the next step.
+  bool a_hand_may_hold() const;
 
   ClothSystem& m_system;
   const HandTrack* m_track;
@@ -108,11 +105,7 @@ class Manipulator {
   std::vector<HandState> m_hands;
   std::vector<PendingAttach> m_attaching;
   std::size_t m_next_key = 0;
-  /// Time of the previous update (the last step's start); NaN before the first.
-  double m_previous_update = std::numeric_limits<double>::quiet_NaN();
-  /// The cloth's positions at m_previous_update, kept only when a hold search may need them
-  /// (empty otherwise: the search then takes the cloth at the step's end).
-  Eigen::VectorXd m_previous_positions;
+  HoldSearch m_hold_search;
   std::vector<ManipulationEvent> m_events;
 };
 

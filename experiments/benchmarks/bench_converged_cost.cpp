@@ -160,8 +160,9 @@ void newton_cost(benchmark::State& state, CostScene scene, int n, double toleran
     rtol_found[key] = 0.0;
     for (double rtol = 1e-2; rtol > 1e-11; rtol *= 0.1) {
       try {
-        const Eigen::VectorXd end = bench::one_frame(*f.system, f.y,
-                                                     bench::converged_newton(rtol, 1e-3 * rtol));
+        const Eigen::VectorXd end = bench::one_frame(
+            *f.system, f.y,
+            testing::converged_backward_euler(bench::cost_frame, rtol, 1e-3 * rtol));
         if (bench::position_distance(end, f.reference) <= tolerance) {
           rtol_found[key] = rtol;
           break;
@@ -176,7 +177,7 @@ void newton_cost(benchmark::State& state, CostScene scene, int n, double toleran
     state.SkipWithError("not within tolerance at rtol 1e-10");
     return;
   }
-  time_frame(state, f, bench::converged_newton(rtol, 1e-3 * rtol));
+  time_frame(state, f, testing::converged_backward_euler(bench::cost_frame, rtol, 1e-3 * rtol));
   state.counters["rtol"] = rtol;
 }
 

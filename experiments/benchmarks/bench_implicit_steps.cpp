@@ -14,7 +14,7 @@
 #include <benchmark/benchmark.h>
 
 #include "experiments/benchmarks/bench_scenes.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace drape {
 namespace {

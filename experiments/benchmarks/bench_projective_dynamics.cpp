@@ -6,7 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include "experiments/benchmarks/draped_cloth.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace drape {
 namespace {

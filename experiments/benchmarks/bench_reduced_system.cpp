@@ -7,7 +7,7 @@
 
 #include <functional>
 
-#include "integrators/newton/grid_multigrid.hpp"
+#include "integrators/linear/grid_multigrid.hpp"
 #include "tests/support/grid_matrix.hpp"
 
 namespace drape {

@@ -9,7 +9,7 @@
 #include "experiments/benchmarks/bench_scenes.hpp"
 #include "experiments/benchmarks/draped_cloth.hpp"
 #include "integrators/explicit/leapfrog.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace drape {
 namespace {

@@ -8,7 +8,8 @@
 #include <cmath>
 
 #include "experiments/benchmarks/draped_cloth.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
+#include "tests/support/backward_euler_reference.hpp"
 
 namespace drape {
 namespace {
@@ -26,17 +27,6 @@ IntegratorOptions vbd_options(long iterations) {
   o.name = "vbd";
   o.dt = frame;
   o.settings = {{"iterations", iterations}};
-  return o;
-}
-
-IntegratorOptions newton_options(double rtol, double atol) {
-  IntegratorOptions o;
-  o.name = "implicit-euler";
-  o.dt = frame;
-  o.solve = "converged";
-  o.rtol = rtol;
-  o.atol = atol;
-  o.max_newton_iters = 500;
   return o;
 }
 
@@ -94,7 +84,7 @@ std::unique_ptr<ClothSystem> swinging_sheet(int n, Eigen::VectorXd& y) {
   const Eigen::VectorXd& rest = system->cloth().rest_positions;
   system->constraints().fix_at(0, rest.segment<3>(0));
   system->constraints().fix_at(n - 1, rest.segment<3>(3 * (n - 1)));
-  auto method = make_integrator(newton_options(1e-10, 1e-12), *system);
+  auto method = make_integrator(testing::converged_backward_euler(frame, 1e-10, 1e-12), *system);
   method->reset(0.0, system->initial_state(0.0));
   for (int k = 0; k < 3; ++k) method->step(1e9);
   y = method->state();
@@ -113,8 +103,9 @@ void reach_backward_euler(benchmark::State& state, bool with_vbd) {
   constexpr long max_sweeps = 16384;
   Eigen::VectorXd y;
   auto system = swinging_sheet(static_cast<int>(state.range(0)), y);
-  const Eigen::VectorXd reference = first_frame(*system, y, newton_options(1e-10, 1e-12));
-  const IntegratorOptions newton = newton_options(rtol, atol);
+  const Eigen::VectorXd reference =
+      first_frame(*system, y, testing::converged_backward_euler(frame, 1e-10, 1e-12));
+  const IntegratorOptions newton = testing::converged_backward_euler(frame, rtol, atol);
   if (!with_vbd) {
     const double error = weighted_norm(first_frame(*system, y, newton), reference, y, rtol, atol);
     time_first_frame(state, *system, y, newton, error);

@@ -9,7 +9,8 @@
 #include <string>
 
 #include "experiments/benchmarks/bench_scenes.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
+#include "tests/support/backward_euler_reference.hpp"
 
 namespace drape::bench {
 
@@ -21,28 +22,10 @@ inline const char* scene_name(CostScene scene) {
   return scene == CostScene::sheet ? "sheet" : "drape";
 }
 
-/// implicit-euler's converged step (the line-search Newton, docs/integrators/implicit-euler.md)
-/// stopping at ARKODE's test with weights 1 / (rtol |y_n| + atol), its default linear solver
-/// unless `linear_solver` names one; a solve that fails throws instead of halving the step, so
-/// that every method takes the same step.
-inline IntegratorOptions converged_newton(double rtol, double atol,
-                                          const std::string& linear_solver = "") {
-  IntegratorOptions o;
-  o.name = "implicit-euler";
-  o.dt = cost_frame;
-  o.solve = "converged";
-  o.linear_solver = linear_solver;
-  o.rtol = rtol;
-  o.atol = atol;
-  o.max_newton_iters = 400;
-  o.max_step_halvings = 0;
-  return o;
-}
-
 /// The reference: converged backward Euler far below the distances compared (weighted update
 /// 0.1 / 1e10 of |y|: about 1e-11 m), solved with sparse LDLT, not the compared CG.
 inline IntegratorOptions reference_newton() {
-  return converged_newton(1e-10, 1e-12, "sparse-direct");
+  return testing::converged_backward_euler(cost_frame, 1e-10, 1e-12, "sparse-direct");
 }
 
 /// One frame of `options` from y; the end state.

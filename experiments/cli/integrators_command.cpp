@@ -10,7 +10,7 @@
 #include "integrators/explicit/stability_limit.hpp"
 #include "integrators/arkode/arkode_tables.hpp"
 #include "integrators/arkode/butcher_tableau.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace drape {
 

@@ -8,7 +8,7 @@
 #include "experiments/python/python_scene.hpp"
 #include "experiments/python/python_simulation.hpp"
 #include "experiments/output/provenance.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace py = pybind11;
 

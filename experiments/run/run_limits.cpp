@@ -8,8 +8,8 @@
 
 #include "core/io/input_error.hpp"
 #include "core/io/scene_limits.hpp"
-#include "integrators/interface/registry.hpp"
-#include "integrators/newton/reduced_newton_solver.hpp"
+#include "integrators/registry/registry.hpp"
+#include "integrators/linear/reduced_newton_solver.hpp"
 
 namespace drape {
 

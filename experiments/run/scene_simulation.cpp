@@ -3,7 +3,8 @@
 #include "core/dummy/dummy_sources.hpp"
 #include "experiments/run/initial_perturbation.hpp"
 #include "experiments/run/run_limits.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/options_reader.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace drape {
 

@@ -14,6 +14,7 @@
 #include "experiments/output/run_folder.hpp"
 #include "experiments/run/scene_simulation.hpp"
 #include "experiments/output/series_writers.hpp"
+#include "integrators/registry/options_reader.hpp"
 
 namespace drape {
 

@@ -13,7 +13,7 @@
 #include "experiments/run/run_limits.hpp"
 #include "experiments/run/scene_simulation.hpp"
 #include "experiments/sweep/ensemble_summary.hpp"
-#include "integrators/interface/integrator_options.hpp"
+#include "integrators/registry/options_reader.hpp"
 
 namespace drape {
 

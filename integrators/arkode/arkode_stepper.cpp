@@ -1,5 +1,6 @@
 #include "integrators/arkode/arkode_stepper.hpp"
 
+#include "integrators/arkode/arkode_integrators.hpp"
 #include "integrators/arkode/butcher_tableau.hpp"
 
 #include <sunlinsol/sunlinsol_spfgmr.h>
@@ -47,11 +48,12 @@ ArkodeStepper::ArkodeStepper(ClothSystem& system, ArkodeKind kind,
         if (!table) throw std::logic_error("ArkodeStepper: unvalidated table " + options.table);
         return table;
       }()) {
+  const NamedKeys& declared = arkode_integrator(kind).named_keys;
   if (kind != ArkodeKind::explicit_rk)
-    m_reduced.emplace(system, *reduced_solve_named(linear_solver_of(options)),
-                      m_split.implicit_part, linear_tolerance_of(options),
+    m_reduced.emplace(system, *reduced_solve_named(linear_solver_of(options, declared)),
+                      m_split.implicit_part, linear_tolerance_of(options, declared),
                       options.max_linear_iters);
-  if (m_reduced && uses_line_search(options))
+  if (m_reduced && uses_line_search(options, declared))
     m_line_search.emplace(system, m_split.implicit_part, *m_reduced,
                           *exact_solve_named(exact_solve_of(options)));
   // The N_Vector views m_y for the whole life of the stepper: m_y keeps this size and buffer.
@@ -131,8 +133,9 @@ void ArkodeStepper::set_up_newton() {
   } else {
     set_up_linear_solver();
   }
-  check_sundials(ARKStepSetMaxNonlinIters(mem, max_newton_iters_of(m_options)),
-                 "ARKStepSetMaxNonlinIters");
+  check_sundials(
+      ARKStepSetMaxNonlinIters(mem, max_newton_iters_of(m_options, m_line_search.has_value())),
+      "ARKStepSetMaxNonlinIters");
   // f_I at a solved stage follows from the stage equation: one implicit rhs less per stage.
   check_sundials(ARKStepSetDeduceImplicitRhs(mem, SUNTRUE), "ARKStepSetDeduceImplicitRhs");
 }
@@ -142,7 +145,8 @@ void ArkodeStepper::set_up_linear_solver() {
   // CG inside the preconditioner is not a fixed linear operator: flexible GMRES tolerates that;
   // the factorised solve is one, and plain GMRES is enough.
   const bool inexact =
-      *reduced_solve_named(linear_solver_of(m_options)) != ReducedSolve::sparse_ldlt;
+      *reduced_solve_named(linear_solver_of(m_options, arkode_integrator(m_kind).named_keys)) !=
+      ReducedSolve::sparse_ldlt;
   m_linear_solver.reset(detail::check_created(
       inexact ? SUNLinSol_SPFGMR(m_y_vector.get(), SUN_PREC_RIGHT, krylov_dimension, m_context)
               : SUNLinSol_SPGMR(m_y_vector.get(), SUN_PREC_RIGHT, krylov_dimension, m_context),
@@ -354,6 +358,19 @@ int ArkodeStepper::preconditioner_solve(sunrealtype, N_Vector, N_Vector, N_Vecto
   ReducedNewtonSolver& solver = *self_of(data).m_reduced;
   const bool solved = solver.solve(view(r), view(z));
   return solved || solver.method() == ReducedSolve::conjugate_gradients ? 0 : 1;
+}
+
+std::vector<IntegratorDeclaration> arkode_declarations() {
+  std::vector<IntegratorDeclaration> all;
+  for (const ArkodeIntegrator& a : arkode_integrators())
+    all.push_back({a.name, a.family, 3, true, a.description, {},
+                   [](ClothSystem& system,
+                      const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
+                     return std::make_unique<ArkodeStepper>(system, *arkode_kind(options.name),
+                                                            options);
+                   },
+                   a.named_keys});
+  return all;
 }
 
 }  // namespace drape

@@ -1,12 +1,14 @@
 #pragma once
 #include <string>
 #include <optional>
+#include <vector>
 
 #include "integrators/arkode/arkode_tables.hpp"
 #include "integrators/arkode/line_search_nonlinear_solver.hpp"
 #include "integrators/interface/integrator.hpp"
+#include "integrators/interface/integrator_declaration.hpp"
 #include "integrators/interface/integrator_options.hpp"
-#include "integrators/newton/reduced_newton_solver.hpp"
+#include "integrators/linear/reduced_newton_solver.hpp"
 #include "integrators/arkode/sundials_handles.hpp"
 
 namespace drape {
@@ -103,5 +105,9 @@ class ArkodeStepper final : public Integrator {
   std::unique_ptr<LineSearchNonlinearSolver> m_nonlinear_solver;
   detail::ArkodeHandle m_arkode;
 };
+
+/// The declarations of arkode-erk, arkode-dirk and arkode-imex for the registry
+/// (arkode_integrators.hpp).
+std::vector<IntegratorDeclaration> arkode_declarations();
 
 }  // namespace drape

@@ -9,17 +9,22 @@ namespace {
 // Norsett and Wanner, "Solving ODEs I", section III.5), and 2 keeps a margin.
 constexpr double max_step_ratio = 2.0;
 
+// implicit-euler's keys and defaults: the linear solver's and `solve`
+// (docs/integrators/bdf2.md, "Keys").
+const NamedKeys declared_keys = {false, false, true, true, false, "pcg-multigrid", 1e-3};
+
 }  // namespace
 
 Bdf2::Bdf2(ClothSystem& system, const IntegratorOptions& options)
     : Integrator(system),
       m_dt(options.dt),
       m_max_steps(options.max_steps),
-      m_solver(system, *reduced_solve_named(linear_solver_of(options)), ForceSplit::all,
-               linear_tolerance_of(options), options.max_linear_iters),
+      m_solver(system, *reduced_solve_named(linear_solver_of(options, declared_keys)),
+               ForceSplit::all, linear_tolerance_of(options, declared_keys),
+               options.max_linear_iters),
       m_linearised(system, m_solver),
       m_from_predictor(options.setting_choice("linearise_about") == "predictor") {
-  if (uses_line_search(options)) m_converged.emplace(system, m_solver, options);
+  if (uses_line_search(options, declared_keys)) m_converged.emplace(system, m_solver, options);
 }
 
 void Bdf2::reset(double t, const Eigen::VectorXd& y) {
@@ -124,9 +129,7 @@ IntegratorDeclaration bdf2_declaration() {
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<Bdf2>(system, options);
           },
-          // implicit-euler's keys and defaults: the linear solver's and `solve`
-          // (docs/integrators/bdf2.md, "Keys")
-          {false, false, true, true, false, "pcg-multigrid", 1e-3}};
+          declared_keys};
 }
 
 }  // namespace drape

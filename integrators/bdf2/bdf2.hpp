@@ -6,7 +6,7 @@
 #include "integrators/interface/integrator_options.hpp"
 #include "integrators/newton/converged_step.hpp"
 #include "integrators/newton/linearised_step.hpp"
-#include "integrators/newton/reduced_newton_solver.hpp"
+#include "integrators/linear/reduced_newton_solver.hpp"
 
 namespace drape {
 

@@ -2,10 +2,11 @@
 #include <optional>
 
 #include "integrators/interface/integrator.hpp"
+#include "integrators/interface/integrator_declaration.hpp"
 #include "integrators/interface/integrator_options.hpp"
 #include "integrators/newton/converged_step.hpp"
 #include "integrators/newton/linearised_step.hpp"
-#include "integrators/newton/reduced_newton_solver.hpp"
+#include "integrators/linear/reduced_newton_solver.hpp"
 
 namespace drape {
 
@@ -36,5 +37,8 @@ class ImplicitEuler final : public Integrator {
   LinearisedStep m_linearised;                // solve = linearised
   std::optional<ConvergedStep> m_converged;  // solve = converged
 };
+
+/// implicit-euler's declaration for the registry (integrator_declaration.hpp).
+IntegratorDeclaration implicit_euler_declaration();
 
 }  // namespace drape

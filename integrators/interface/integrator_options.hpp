@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "integrators/interface/integrator_declaration.hpp"
+
 namespace drape {
 
 /// Which method, with which step and tolerances, and how implicit systems are solved.
@@ -40,48 +42,47 @@ struct IntegratorOptions {
   /// Fixed-step ARKODE runs: how many times a step whose solve fails may be halved (0: the
   /// first failure ends the run).
   int max_step_halvings = 10;
-  /// Relative residual of the iterative linear solvers; 0 = default_linear_tolerance(name).
+  /// Relative residual of the iterative linear solvers; 0 = the declared default
+  /// (linear_tolerance_of).
   double linear_tolerance = 0.0;
   int max_linear_iters = 200;     ///< Krylov / CG iterations per solve
   long max_steps = 100000000;     ///< safety bound on steps per run
   /// The keys the integrator declares as its own (integrator_declaration.hpp), by name; a key
   /// not given holds its declared default after read_integrator_options(). Read them with the
-  /// setting_* functions, which fall back to the default for options built in code.
+  /// setting_* functions, which fall back to the declared default for options built in code.
   nlohmann::json settings = nlohmann::json::object();
 
-  long setting_integer(const std::string& key) const;
-  double setting_number(const std::string& key) const;
-  bool setting_flag(const std::string& key) const;
-  std::string setting_choice(const std::string& key) const;
+  /// The key's value in `settings`, or the default `declared` gives it.
+  const nlohmann::json& setting(const std::string& key,
+                                const IntegratorDeclaration& declared) const;
+  long setting_integer(const std::string& key, const IntegratorDeclaration& declared) const;
+  double setting_number(const std::string& key, const IntegratorDeclaration& declared) const;
+  bool setting_flag(const std::string& key, const IntegratorDeclaration& declared) const;
+  std::string setting_choice(const std::string& key, const IntegratorDeclaration& declared) const;
 };
 
-/// The linear solver an implicit integrator uses: `linear_solver`, or when empty pcg-multigrid for
-/// implicit-euler and bdf2 and pcg-reduced inside ARKODE (measured,
-/// docs/integrators/linear-solvers.md).
-std::string linear_solver_of(const IntegratorOptions& options);
-/// CG's relative residual when `linear_tolerance` is 0: 1e-3 for implicit-euler and bdf2 (below
-/// their truncation error at any step worth taking implicitly, docs/integrators/implicit-euler.md
-/// and docs/integrators/bdf2.md, "Linear tolerance"), 1e-8 inside ARKODE's preconditioner.
-double default_linear_tolerance(const std::string& name);
-/// `linear_tolerance`, or the integrator's default when it is 0.
-double linear_tolerance_of(const IntegratorOptions& options);
+// The options as an integrator reads them, against the named keys it declares
+// (integrator_declaration.hpp). registry.hpp looks the declaration up by the options' name.
 
+/// The linear solver an implicit integrator uses: `linear_solver`, or the declared default
+/// (pcg-multigrid for implicit-euler and bdf2, pcg-reduced inside ARKODE: measured,
+/// docs/integrators/linear-solvers.md).
+std::string linear_solver_of(const IntegratorOptions& options, const NamedKeys& declared);
+/// `linear_tolerance`, or the declared default when it is 0: 1e-3 for implicit-euler and bdf2
+/// (below their truncation error at any step worth taking implicitly,
+/// docs/integrators/implicit-euler.md and docs/integrators/bdf2.md, "Linear tolerance"), 1e-8
+/// inside ARKODE's preconditioner.
+double linear_tolerance_of(const IntegratorOptions& options, const NamedKeys& declared);
 /// arkode-dirk and arkode-imex: `nonlinear_solver`, or `line-search` when it is empty; "" for
 /// the other integrators (which reject the key).
-std::string nonlinear_solver_of(const IntegratorOptions& options);
+std::string nonlinear_solver_of(const IntegratorOptions& options, const NamedKeys& declared);
 /// Whether the run solves its stages with the line-search Newton (arkode-dirk and arkode-imex
 /// by default, implicit-euler and bdf2 with solve = converged).
-bool uses_line_search(const IntegratorOptions& options);
+bool uses_line_search(const IntegratorOptions& options, const NamedKeys& declared);
 /// `exact_solve`, or `lu` when it is empty.
 std::string exact_solve_of(const IntegratorOptions& options);
-/// `max_newton_iters`, or when 0: 10 for ARKODE's Newton, 400 for the line-search Newton
+/// `max_newton_iters`, or when 0: 400 for the line-search Newton, 10 for ARKODE's Newton
 /// (docs/journal/2026-11-26-iteration-bound.md).
-int max_newton_iters_of(const IntegratorOptions& options);
-
-/// Reads and validates an `integrator` object; errors name `file` and `path.key`.
-IntegratorOptions read_integrator_options(const nlohmann::json& object, const std::string& file,
-                                          const std::string& path);
-/// The options as JSON, every key written (reproducibility).
-nlohmann::json to_json(const IntegratorOptions& options);
+int max_newton_iters_of(const IntegratorOptions& options, bool line_search);
 
 }  // namespace drape

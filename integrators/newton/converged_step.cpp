@@ -19,7 +19,7 @@ ConvergedStep::ConvergedStep(ClothSystem& system, ReducedNewtonSolver& solver,
       m_name(options.name),
       m_rtol(options.rtol),
       m_atol(options.atol),
-      m_max_newton_iters(max_newton_iters_of(options)),
+      m_max_newton_iters(max_newton_iters_of(options, /*line_search=*/true)),
       m_max_step_halvings(options.max_step_halvings),
       m_line_search(system, ForceSplit::all, solver, *exact_solve_named(exact_solve_of(options))) {}
 

@@ -25,7 +25,7 @@
 #include "core/model/cloth_system.hpp"
 #include "integrators/newton/exact_stage_jacobian.hpp"
 #include "integrators/newton/incremental_potential.hpp"
-#include "integrators/newton/reduced_newton_solver.hpp"
+#include "integrators/linear/reduced_newton_solver.hpp"
 
 namespace drape {
 

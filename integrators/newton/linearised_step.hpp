@@ -14,7 +14,7 @@
 
 #include "core/model/cloth_system.hpp"
 #include "integrators/interface/integrator.hpp"
-#include "integrators/newton/reduced_newton_solver.hpp"
+#include "integrators/linear/reduced_newton_solver.hpp"
 
 namespace drape {
 

@@ -25,9 +25,10 @@ ProjectiveDynamics::ProjectiveDynamics(ClothSystem& system, const IntegratorOpti
     : Integrator(system),
       m_dt(options.dt),
       m_max_steps(options.max_steps),
-      m_iterations(static_cast<int>(options.setting_integer("iterations"))),
-      m_chebyshev(options.setting_flag("chebyshev")),
-      m_rho(options.setting_number("rho")),
+      m_iterations(static_cast<int>(
+          options.setting_integer("iterations", projective_dynamics_declaration()))),
+      m_chebyshev(options.setting_flag("chebyshev", projective_dynamics_declaration())),
+      m_rho(options.setting_number("rho", projective_dynamics_declaration())),
       // The smooth model's normal stiffness reaches 2 k (its energy k/(3 delta) (delta - G)^3
       // continued quadratically inside); the particle and surface models' is k. The weight keeps
       // A above the contact's Hessian, so the iteration does not overshoot a contact.

@@ -20,10 +20,10 @@ VbdStart start_named(const std::string& name) {
 Vbd::Vbd(ClothSystem& system, const IntegratorOptions& options)
     : Integrator(system),
       m_dt(options.dt),
-      m_iterations(static_cast<int>(options.setting_integer("iterations"))),
-      m_start(start_named(options.setting_choice("init"))),
-      m_chebyshev(options.setting_flag("chebyshev")),
-      m_rho(options.setting_number("rho")),
+      m_iterations(static_cast<int>(options.setting_integer("iterations", vbd_declaration()))),
+      m_start(start_named(options.setting_choice("init", vbd_declaration()))),
+      m_chebyshev(options.setting_flag("chebyshev", vbd_declaration())),
+      m_rho(options.setting_number("rho", vbd_declaration())),
       m_descent(system) {}
 
 void Vbd::reset(double t, const Eigen::VectorXd& y) {

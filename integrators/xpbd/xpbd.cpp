@@ -14,9 +14,10 @@ namespace drape {
 Xpbd::Xpbd(ClothSystem& system, const IntegratorOptions& options)
     : Integrator(system),
       m_dt(options.dt),
-      m_substeps(static_cast<int>(options.setting_integer("substeps"))),
-      m_iterations(static_cast<int>(options.setting_integer("iterations"))),
-      m_jacobi(options.setting_choice("sweep") == "jacobi") {
+      m_substeps(static_cast<int>(options.setting_integer("substeps", xpbd_declaration()))),
+      m_iterations(
+          static_cast<int>(options.setting_integer("iterations", xpbd_declaration()))),
+      m_jacobi(options.setting_choice("sweep", xpbd_declaration()) == "jacobi") {
   const SpringSet& springs = system.cloth().springs;
   const int n = system.num_particles();
   const Eigen::Index count = springs.size();

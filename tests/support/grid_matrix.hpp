@@ -1,12 +1,12 @@
 #pragma once
 // A random matrix with the shape of the reduced system S of a spring grid
 // (reduced_newton_solver.hpp), shared by the multigrid tests and the linear-solver benchmarks,
-// and the dense matrix its sweeps see; no test framework needed.
+// the dense matrix it is and the one its sweeps see; no test framework needed.
 #include <Eigen/Dense>
 #include <random>
 #include <vector>
 
-#include "integrators/newton/symmetric_block_matrix.hpp"
+#include "integrators/linear/symmetric_block_matrix.hpp"
 
 namespace drape::testing {
 
@@ -42,6 +42,18 @@ inline detail::SymmetricBlockMatrix grid_matrix(int rows, int cols, unsigned see
     a.blocks()[static_cast<std::size_t>(a.row_start(i))] += detail::pack(0.01 * Mat3::Identity());
   a.finish_rows();
   return a;
+}
+
+/// `a` as a dense matrix, column by column through its product.
+inline Eigen::MatrixXd dense_matrix(const detail::SymmetricBlockMatrix& a) {
+  const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(a.rows());
+  Eigen::MatrixXd out(n3, n3);
+  Eigen::VectorXd column;
+  for (Eigen::Index k = 0; k < n3; ++k) {
+    a.multiply(Eigen::VectorXd::Unit(n3, k), column);
+    out.col(k) = column;
+  }
+  return out;
 }
 
 /// The dense matrix the Gauss-Seidel sweeps of `a` (held densely) see (symmetric_block_matrix.hpp):

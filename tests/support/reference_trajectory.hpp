@@ -2,7 +2,7 @@
 // The exact trajectory of a test system, to far below the errors of the methods under test.
 #include <Eigen/Core>
 
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape::testing {

@@ -29,7 +29,7 @@ double iterated_distance(const bench::CostFrame& f, const char* label, long iter
 // The Newton at rtol (atol 1e-3 rtol); infinite where it does not converge.
 double newton_distance(const bench::CostFrame& f, double rtol) {
   try {
-    return distance(f, bench::converged_newton(rtol, 1e-3 * rtol));
+    return distance(f, testing::converged_backward_euler(bench::cost_frame, rtol, 1e-3 * rtol));
   } catch (const IntegratorFailure&) {
     return std::numeric_limits<double>::infinity();
   }

@@ -11,7 +11,8 @@
 #include <cmath>
 
 #include "core/dummy/dummy_sources.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/options_reader.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace drape {
 namespace {

@@ -1,7 +1,7 @@
 """CG iterations on the implicit-euler step's reduced systems S z = b, dumped from
 BM_ImplicitStep/sheet/implicit-euler (dump_reduced_systems.patch), with two preconditioners:
 
-- the geometric cycle of `pcg-multigrid` (integrators/newton/grid_multigrid.hpp) reproduced in
+- the geometric cycle of `pcg-multigrid` (integrators/linear/grid_multigrid.hpp) reproduced in
   double precision: bilinear P, Galerkin coarse operators, one forward block Gauss-Seidel sweep
   before the coarse correction and one backward after, the coarsest grid (at most 16 nodes)
   solved densely;

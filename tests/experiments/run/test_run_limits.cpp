@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "experiments/run/scene_simulation.hpp"
+#include "integrators/registry/options_reader.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {

@@ -5,7 +5,7 @@
 #include "core/dummy/dummy_sources.hpp"
 #include "core/scene/scene.hpp"
 #include "integrators/arkode/arkode_stepper.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {

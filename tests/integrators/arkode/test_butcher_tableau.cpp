@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "integrators/arkode/butcher_tableau.hpp"
-#include "integrators/interface/integrator_options.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/options_reader.hpp"
+#include "integrators/registry/registry.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "core/model/cloth_system.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {

@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "integrators/arkode/arkode_stepper.hpp"
-#include "integrators/interface/integrator_options.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/options_reader.hpp"
+#include "integrators/registry/registry.hpp"
 #include "tests/support/swinging_sheet.hpp"
 
 namespace drape {

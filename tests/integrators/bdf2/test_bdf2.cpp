@@ -9,6 +9,7 @@
 
 #include "integrators/bdf2/bdf2.hpp"
 #include "integrators/implicit_euler/implicit_euler.hpp"
+#include "integrators/registry/options_reader.hpp"
 #include "tests/support/reference_trajectory.hpp"
 #include "tests/support/swinging_sheet.hpp"
 #include "tests/support/test_support.hpp"

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "integrators/implicit_euler/implicit_euler.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "tests/support/swinging_sheet.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -7,7 +7,8 @@
 
 #include <functional>
 
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/options_reader.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/newton/incremental_potential.hpp"
 #include "integrators/vbd/vertex_block_potential.hpp"
 #include "tests/support/swinging_sheet.hpp"

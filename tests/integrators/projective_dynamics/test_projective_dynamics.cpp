@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "integrators/implicit_euler/implicit_euler.hpp"
+#include "integrators/registry/options_reader.hpp"
 #include "integrators/projective_dynamics/projective_dynamics.hpp"
 #include "tests/support/backward_euler_reference.hpp"
 #include "tests/support/swinging_sheet.hpp"

@@ -3,7 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "integrators/implicit_euler/implicit_euler.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/options_reader.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/vbd/vbd.hpp"
 #include "tests/support/backward_euler_reference.hpp"
 #include "tests/support/swinging_sheet.hpp"
@@ -176,9 +177,9 @@ TEST(Vbd, BadKeysAreInputErrorsNamingTheField) {
   const IntegratorOptions o =
       read_integrator_options({{"name", "vbd"}, {"dt", frame}, {"init", "adaptive"}, {"rho", 0.5}},
                               "scene.json", "integrator");
-  EXPECT_EQ(o.setting_choice("init"), "adaptive");
-  EXPECT_EQ(o.setting_number("rho"), 0.5);
-  EXPECT_EQ(o.setting_integer("iterations"), 20);
+  EXPECT_EQ(o.setting_choice("init", vbd_declaration()), "adaptive");
+  EXPECT_EQ(o.setting_number("rho", vbd_declaration()), 0.5);
+  EXPECT_EQ(o.setting_integer("iterations", vbd_declaration()), 20);
   EXPECT_EQ(find_integrator("vbd")->family, "optimisation");
 }
 

@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "integrators/explicit/leapfrog.hpp"
-#include "integrators/interface/integrator_options.hpp"
+#include "integrators/registry/options_reader.hpp"
 #include "integrators/implicit_euler/implicit_euler.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/xpbd/xpbd.hpp"
 #include "tests/support/backward_euler_reference.hpp"
 #include "tests/support/swinging_sheet.hpp"
@@ -223,9 +223,9 @@ TEST(Xpbd, BadKeysNameTheField) {
             "no error");
   const IntegratorOptions defaults =
       read_integrator_options({{"name", "xpbd"}, {"dt", 0.01}}, "scene.json", "integrator");
-  EXPECT_EQ(defaults.setting_integer("substeps"), 80);
-  EXPECT_EQ(defaults.setting_integer("iterations"), 1);
-  EXPECT_EQ(defaults.setting_choice("sweep"), "gauss-seidel");
+  EXPECT_EQ(defaults.setting_integer("substeps", xpbd_declaration()), 80);
+  EXPECT_EQ(defaults.setting_integer("iterations", xpbd_declaration()), 1);
+  EXPECT_EQ(defaults.setting_choice("sweep", xpbd_declaration()), "gauss-seidel");
   EXPECT_EQ(find_integrator("xpbd")->family, "position-based");
 }
 

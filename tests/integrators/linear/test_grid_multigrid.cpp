@@ -6,13 +6,14 @@
 #include <Eigen/Dense>
 #include <functional>
 
-#include "integrators/newton/grid_multigrid.hpp"
+#include "integrators/linear/grid_multigrid.hpp"
 #include "tests/support/grid_matrix.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {
 namespace {
 
+using testing::dense_matrix;
 using testing::grid_matrix;
 using testing::sweep_matrix;
 
@@ -56,18 +57,6 @@ TEST(GridMultigrid, IsSymmetricPositiveDefinite) {
       EXPECT_GT(z1.dot(b1), 0.0);
     }
   }
-}
-
-// A as a dense matrix, column by column through its product.
-Eigen::MatrixXd dense_matrix(const detail::SymmetricBlockMatrix& a) {
-  const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(a.rows());
-  Eigen::MatrixXd out(n3, n3);
-  Eigen::VectorXd column;
-  for (Eigen::Index k = 0; k < n3; ++k) {
-    a.multiply(Eigen::VectorXd::Unit(n3, k), column);
-    out.col(k) = column;
-  }
-  return out;
 }
 
 // The dense operator of a V-cycle on an A of rows x cols nodes: bilinear interpolation built

@@ -1,4 +1,4 @@
-#include "integrators/newton/grid_multigrid.hpp"
+#include "integrators/linear/grid_multigrid.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -26,7 +26,7 @@
 // I - P B_c P^T A is A-positive semidefinite and I - BA too; BA's eigenvalues are positive
 // because Gauss-Seidel on SPD A is an A-norm contraction (|G e|_A < |e|_A), and the coarse
 // correction never grows the A-norm. Tested against a dense reference cycle
-// (tests/integrators/newton/test_grid_multigrid.cpp).
+// (tests/integrators/linear/test_grid_multigrid.cpp).
 //
 // Why bilinear: for a second-order operator, multigrid needs the orders of interpolation and
 // restriction to add up to more than 2 (Trottenberg, Oosterlee and Schuller 2001, "Multigrid",
@@ -39,7 +39,7 @@
 #include <Eigen/Cholesky>
 #include <vector>
 
-#include "integrators/newton/symmetric_block_matrix.hpp"
+#include "integrators/linear/symmetric_block_matrix.hpp"
 
 namespace drape::detail {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/dummy/dummy.hpp"
-#include "integrators/newton/reduced_newton_solver.hpp"
+#include "integrators/linear/reduced_newton_solver.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {

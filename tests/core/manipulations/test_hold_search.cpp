@@ -1,10 +1,10 @@
 // The hold's particle located inside a step (docs/model.md section 7, "Hold"): the particle
-// the hand reaches first, whatever the step. Kept apart from test_manipulations.cpp, which is
-// at the size limit; both test core/manipulations/manipulations.cpp.
+// the hand reaches first, whatever the step; searched alone and through the manipulator.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "core/manipulations/hold_search.hpp"
 #include "core/manipulations/manipulations.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -61,6 +61,37 @@ struct CrossingHand {
     return {};
   }
 };
+
+TEST(HoldSearch, SearchesTheWholeStepOnceItsStartIsKnown) {
+  CrossingHand scene;
+  const ClothSystem& system = *scene.system;
+  const Eigen::VectorXd rest = system.initial_state(0.0);
+  const double end = 2.0 / 30.0;
+  HoldSearch fresh;  // no previous update: only the step's end is tested
+  EXPECT_EQ(fresh.first_reached_particle(system, scene.track, Hand::Right, end, rest, 0.015),
+            system.cloth().index(2, 1));
+  HoldSearch search;
+  search.finish_update(0.0, rest, system.num_particles(), true);
+  EXPECT_EQ(search.first_reached_particle(system, scene.track, Hand::Right, end, rest, 0.015),
+            system.cloth().index(2, 0));
+  // Before the hand comes within the threshold of any particle, nothing is reached.
+  EXPECT_EQ(search.first_reached_particle(system, scene.track, Hand::Right, 0.04, rest, 0.015),
+            -1);
+}
+
+TEST(HoldSearch, NearestFreeParticleSkipsFixedOnes) {
+  CrossingHand scene;
+  ClothSystem& system = *scene.system;
+  const Eigen::VectorXd rest = system.initial_state(0.0);
+  const int corner = 0;  // fixed by the scene, at the origin
+  const Vec3 above = rest.segment<3>(3 * corner) + Vec3(0, 0.001, 0);
+  double distance = 0.0;
+  const int nearest = nearest_free_particle(system, above, rest, distance);
+  EXPECT_NE(nearest, corner);
+  EXPECT_NEAR(distance, (rest.segment<3>(3 * nearest) - above).norm(), 1e-15);
+  // The corner's neighbours are 2 cm away.
+  EXPECT_NEAR(distance, std::sqrt(0.02 * 0.02 + 0.001 * 0.001), 1e-12);
+}
 
 TEST(HoldLocation, TakesTheParticleTheHandReachedFirstAtAnyStep) {
   const double entry = (0.08 - std::sqrt(0.015 * 0.015 - 0.01 * 0.01)) / 1.5;

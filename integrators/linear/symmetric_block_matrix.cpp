@@ -1,4 +1,4 @@
-#include "integrators/newton/symmetric_block_matrix.hpp"
+#include "integrators/linear/symmetric_block_matrix.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>

@@ -1,74 +1,24 @@
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 #include "core/io/input_error.hpp"
+#include "integrators/arkode/arkode_integrators.hpp"
 #include "integrators/arkode/arkode_stepper.hpp"
-#include "integrators/arkode/arkode_tables.hpp"
 #include "integrators/bdf2/bdf2.hpp"
-#include "integrators/implicit_euler/implicit_euler.hpp"
 #include "integrators/explicit/leapfrog.hpp"
-#include "integrators/newton/line_search_newton.hpp"
-#include "integrators/newton/reduced_newton_solver.hpp"
-#include "integrators/projective_dynamics/projective_dynamics.hpp"
 #include "integrators/explicit/symplectic_euler.hpp"
-#include "integrators/xpbd/xpbd.hpp"
+#include "integrators/implicit_euler/implicit_euler.hpp"
+#include "integrators/newton/line_search_newton.hpp"
+#include "integrators/projective_dynamics/projective_dynamics.hpp"
 #include "integrators/vbd/vbd.hpp"
+#include "integrators/xpbd/xpbd.hpp"
 
 namespace drape {
 
 namespace {
 
-// The ARKODE integrators, each declared once: its name, its kind of tables, and the named keys
-// it reads (NamedKeys' fields in order: error_tolerances, newton_stages, linear_solves, solve,
-// imex_split; the linear solver's defaults pcg-reduced and 1e-8).
-struct ArkodeIntegrator {
-  const char* name;
-  ArkodeKind kind;
-  const char* family;
-  const char* description;
-  NamedKeys named_keys;
-};
-
-const ArkodeIntegrator arkode_integrators[] = {
-    {"arkode-erk", ArkodeKind::explicit_rk, "explicit",
-     "ARKODE ARKStep explicit Runge-Kutta, any ERK table (default Bogacki-Shampine 3(2))",
-     {true, false, false, false, false}},
-    {"arkode-dirk", ArkodeKind::diagonally_implicit, "implicit",
-     "ARKODE ARKStep diagonally implicit Runge-Kutta, any DIRK table (default TRBDF2_3_3_2)",
-     {true, true, true, false, false}},
-    {"arkode-imex", ArkodeKind::imex, "imex",
-     "ARKODE ARKStep IMEX: springs implicit, gravity, air and collision explicit",
-     {true, true, true, false, true}},
-};
-
-// The ARKODE kind of an integrator name, or nothing for our own integrators.
-std::optional<ArkodeKind> arkode_kind(const std::string& name) {
-  for (const ArkodeIntegrator& a : arkode_integrators)
-    if (name == a.name) return a.kind;
-  return std::nullopt;
-}
-
-const char* integrator_of(ArkodeKind kind) {
-  for (const ArkodeIntegrator& a : arkode_integrators)
-    if (a.kind == kind) return a.name;
-  return "";
-}
-
-std::string names_of_kind(ArkodeKind kind) {
-  std::string names;
-  for (const auto& table : arkode_tables())
-    if (table.kind == kind) names += (names.empty() ? "" : ", ") + table.name;
-  return names;
-}
-
-std::unique_ptr<Integrator> make_arkode_stepper(ClothSystem& system,
-                                                const IntegratorOptions& options) {
-  return std::make_unique<ArkodeStepper>(system, *arkode_kind(options.name), options);
-}
-
-// The integrators whose keys are IntegratorOptions' named fields (docs/integrators/README.md); the
-// later ones declare their own keys in their folders.
-std::vector<IntegratorDeclaration> built_in_declarations() {
-  std::vector<IntegratorDeclaration> all = {
+// The explicit integrators read no key beyond name and dt: their declarations are said here.
+std::vector<IntegratorDeclaration> explicit_declarations() {
+  return {
       {"leapfrog", "explicit", 2, false, "the paper's leap-frog (kick-drift-kick form)", {},
        [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
          return std::make_unique<Leapfrog>(system, options.dt);
@@ -81,32 +31,17 @@ std::vector<IntegratorDeclaration> built_in_declarations() {
        },
        {},
        true},
-      {"implicit-euler", "implicit", 1, false,
-       "Baraff-Witkin linearised backward Euler, CG or sparse LDLT on the 3N velocity system",
-       {},
-       [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
-         return std::make_unique<ImplicitEuler>(system, options);
-       },
-       // pcg-multigrid, measured on the draped-cloth benchmark
-       // (docs/integrators/linear-solvers.md): the multigrid cycle pays for itself at
-       // implicit-euler's large steps (90 -> 9 CG iterations at 1/30 s); ARKODE's adaptive steps
-       // there are microseconds, S is then close to M, and block Jacobi is cheaper. 1e-3:
-       // integrator_options.hpp, default_linear_tolerance.
-       {false, false, true, true, false, "pcg-multigrid", 1e-3},
-       true},
   };
-  for (const ArkodeIntegrator& a : arkode_integrators)
-    all.push_back(
-        {a.name, a.family, 3, true, a.description, {}, make_arkode_stepper, a.named_keys});
-  return all;
 }
 
 }  // namespace
 
 const std::vector<IntegratorDeclaration>& integrators() {
   static const std::vector<IntegratorDeclaration> list = [] {
-    std::vector<IntegratorDeclaration> all = built_in_declarations();
-    // Each later integrator's folder declares it (integrator_declaration.hpp).
+    // Each integrator's folder declares it (integrator_declaration.hpp).
+    std::vector<IntegratorDeclaration> all = explicit_declarations();
+    all.push_back(implicit_euler_declaration());
+    for (IntegratorDeclaration& arkode : arkode_declarations()) all.push_back(std::move(arkode));
     for (IntegratorDeclaration (*declare)() : std::initializer_list<IntegratorDeclaration (*)()>{
              &xpbd_declaration, &projective_dynamics_declaration, &vbd_declaration,
              &bdf2_declaration})
@@ -120,7 +55,8 @@ std::vector<TableInfo> integrator_tables() {
   std::vector<TableInfo> list;
   for (const auto& table : arkode_tables()) {
     const detail::ButcherTableHandle loaded = detail::load_main_table(table);
-    list.push_back({integrator_of(table.kind), table.name, loaded->q, loaded->p, loaded->stages});
+    list.push_back(
+        {arkode_integrator(table.kind).name, table.name, loaded->q, loaded->p, loaded->stages});
   }
   return list;
 }
@@ -129,6 +65,32 @@ const IntegratorDeclaration* find_integrator(const std::string& name) {
   for (const auto& info : integrators())
     if (info.name == name) return &info;
   return nullptr;
+}
+
+const NamedKeys& named_keys_of(const std::string& name) {
+  static const NamedKeys none;
+  const IntegratorDeclaration* declaration = find_integrator(name);
+  return declaration ? declaration->named_keys : none;
+}
+
+std::string linear_solver_of(const IntegratorOptions& options) {
+  return linear_solver_of(options, named_keys_of(options.name));
+}
+
+double linear_tolerance_of(const IntegratorOptions& options) {
+  return linear_tolerance_of(options, named_keys_of(options.name));
+}
+
+std::string nonlinear_solver_of(const IntegratorOptions& options) {
+  return nonlinear_solver_of(options, named_keys_of(options.name));
+}
+
+bool uses_line_search(const IntegratorOptions& options) {
+  return uses_line_search(options, named_keys_of(options.name));
+}
+
+int max_newton_iters_of(const IntegratorOptions& options) {
+  return max_newton_iters_of(options, uses_line_search(options));
 }
 
 void validate_integrator_choice(const IntegratorOptions& options, const std::string& file,
@@ -143,7 +105,7 @@ void validate_integrator_choice(const IntegratorOptions& options, const std::str
     if (!table)
       throw InputError(file, path + ".table",
                        "'" + options.table + "' is not a table of " + options.name +
-                           " (one of: " + names_of_kind(*kind) + ")");
+                           " (one of: " + arkode_table_names(*kind) + ")");
     if (options.adaptive && detail::load_main_table(*table)->d == nullptr)
       throw InputError(file, path + ".table",
                        "'" + options.table + "' has no embedded method: adaptive steps need one");

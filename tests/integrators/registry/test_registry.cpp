@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "core/io/input_error.hpp"
-#include "integrators/interface/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {

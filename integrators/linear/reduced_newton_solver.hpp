@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "core/model/cloth_system.hpp"
-#include "integrators/newton/grid_multigrid.hpp"
-#include "integrators/newton/symmetric_block_matrix.hpp"
+#include "integrators/linear/grid_multigrid.hpp"
+#include "integrators/linear/symmetric_block_matrix.hpp"
 
 namespace drape {
 

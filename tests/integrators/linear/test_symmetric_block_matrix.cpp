@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "core/parallel/parallel_for.hpp"
-#include "integrators/newton/symmetric_block_matrix.hpp"
+#include "integrators/linear/symmetric_block_matrix.hpp"
 #include "tests/support/grid_matrix.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -113,12 +113,7 @@ TEST(SymmetricBlockMatrix, ProductAndSweepsMatchTheDenseMatrix) {
 // M' x_new = b - (A - M') x_old.
 void expect_hybrid_sweeps(const detail::SymmetricBlockMatrix& a, int block_rows) {
   const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(a.rows());
-  Eigen::MatrixXd dense(n3, n3);
-  Eigen::VectorXd column;
-  for (Eigen::Index k = 0; k < n3; ++k) {
-    a.multiply(Eigen::VectorXd::Unit(n3, k), column);
-    dense.col(k) = column;
-  }
+  const Eigen::MatrixXd dense = testing::dense_matrix(a);
   EXPECT_EQ(dense, dense.transpose());
   const Eigen::MatrixXd sweeps = testing::sweep_matrix(dense);
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n3, n3);  // D + L_in

@@ -1,4 +1,4 @@
-#include "integrators/newton/reduced_newton_solver.hpp"
+#include "integrators/linear/reduced_newton_solver.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
