@@ -23,7 +23,7 @@ Bdf2::Bdf2(ClothSystem& system, const IntegratorOptions& options)
                ForceSplit::all, linear_tolerance_of(options, declared_keys),
                options.max_linear_iters),
       m_linearised(system, m_solver),
-      m_from_predictor(options.setting_choice("linearise_about") == "predictor") {
+      m_from_predictor(options.setting_choice("linearise_about", bdf2_declaration()) == "predictor") {
   if (uses_line_search(options, declared_keys)) m_converged.emplace(system, m_solver, options);
 }
 
