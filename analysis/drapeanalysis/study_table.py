@@ -10,10 +10,13 @@ keys from each run's summary.json (`integrator_options`, docs/outputs.md).
         --small out/integrator_regimes_field_solvers --large out/accuracy_cost
 
 A setting found in several --small experiments takes the first's runs (of the --scene), so that
-a later experiment only adds the settings the first lacks.
+a later experiment only adds the settings the first lacks. With --by-scene DIR it prints instead
+one table per metric of one experiment, a row per setting and a column per scene (the regimes'
+tables of docs/findings/integrator_regimes.md).
 """
 import argparse
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -38,6 +41,16 @@ COLUMNS = (("cost 20 x 20 [CPU s/s]", "small", "cost", 1.0),
            ("restart error 1 frame after hold, 20 x 20 [mm]", "small", "restart_error_after_hold", 1e3),
            ("same at 64 x 64 [mm]", "large", "restart_error_after_hold", 1e3),
            ("energy change E(end) - E(0) [mJ]", "small", "energy_change", 1e3))
+# The tables by scene (--by-scene): (column, title, scale to the unit).
+SCENE_METRICS = (("vibration_rms_after_hold", "Vibration after the hold [mm]", 1e3),
+                 ("vibration_rms_after_release", "Vibration after the release [mm]", 1e3),
+                 ("vibration_rms_after_attach", "Vibration after the attach [mm]", 1e3),
+                 ("restart_error_after_hold", "Restart error one frame after the hold [mm]", 1e3),
+                 ("restart_error_after_hold_100ms", "Restart error 0.1 s after the hold [mm]", 1e3),
+                 ("restart_error_after_release", "Restart error one frame after the release [mm]", 1e3),
+                 ("restart_error_after_attach", "Restart error one frame after the attach [mm]", 1e3),
+                 ("energy_change", "Energy change E(end) - E(0) [mJ]", 1e3),
+                 ("cost", "Cost [CPU s of stepping per simulated s]", 1.0))
 # The methods' order in the table: explicit, one-solve implicit, multistep, DIRK, then the
 # field's solvers by how far each iterates.
 ORDER = ("leapfrog", "symplectic-euler", "arkode-erk", "implicit-euler", "bdf2", "arkode-dirk",
@@ -155,17 +168,51 @@ def table(small, large):
     return "\n".join(lines)
 
 
+def scene_heading(stem):
+    """A scene's column: "paper-like 1" for combination1_hold_release, "knit 4" for
+    combination4_hold_release_attach_knit; other scenes keep their stem."""
+    match = re.fullmatch(r"combination(\d)_[a-z_]*?(?:_(knit|woven))?", stem)
+    if not match:
+        return stem
+    return f"{match.group(2) or 'paper-like'} {match.group(1)}"
+
+
+def scene_tables(runs):
+    """One Markdown table per SCENE_METRICS column that some run has: a row per setting, a
+    column per scene in the order of the runs."""
+    scenes = list(dict.fromkeys(scene_name(r) for r in runs.to_dict("records")))
+    runs = runs.assign(scene_stem=[scene_name(r) for r in runs.to_dict("records")])
+    order = runs.groupby("setting")["order"].first().sort_values()
+    parts = []
+    for column, title, scale in SCENE_METRICS:
+        if column not in runs or not pd.to_numeric(runs[column], errors="coerce").notna().any():
+            continue
+        lines = [f"{title}:", "", "| method | " + " | ".join(scene_heading(s) for s in scenes) + " |",
+                 "|" + "---|" * (len(scenes) + 1)]
+        for name in order.index:
+            mine = runs[runs["setting"] == name]
+            lines.append("| " + " | ".join([name] + [cell(mine[mine["scene_stem"] == s], column, scale)
+                                                     for s in scenes]) + " |")
+        parts.append("\n".join(lines))
+    return "\n\n".join(parts)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--small", action="append", required=True,
+    parser.add_argument("--small", action="append",
                         help="an experiment folder on the 20 x 20 cloth (metrics.csv; repeatable)")
-    parser.add_argument("--large", required=True, help="the 64 x 64 experiment folder")
+    parser.add_argument("--large", help="the 64 x 64 experiment folder")
     parser.add_argument("--scene", default="combination4_hold_release_attach",
                         help="the scene (file stem) of the --small experiments' runs")
+    parser.add_argument("--by-scene", metavar="DIR", help="print DIR's tables by scene instead")
     args = parser.parse_args(argv)
+    if not args.by_scene and not (args.small and args.large):
+        parser.error("give --small and --large, or --by-scene")
     try:
-        small = [read_runs(d, args.scene) for d in args.small]
-        print(table(small, read_runs(args.large)))
+        if args.by_scene:
+            print(scene_tables(read_runs(args.by_scene)))
+        else:
+            print(table([read_runs(d, args.scene) for d in args.small], read_runs(args.large)))
     except (OSError, ValueError, KeyError) as e:
         print(f"study_table: {e}", file=sys.stderr)
         return 2

@@ -157,6 +157,27 @@ class TableTest(unittest.TestCase):
         self.assertEqual(leapfrog["cost 64 x 64 [CPU s/s]"], "diverged (2 of 2)")
         self.assertEqual(leapfrog["real time at 64 x 64"], "–")
 
+    def test_the_tables_by_scene_have_a_column_per_scene_and_only_measured_metrics(self):
+        text = study_table.scene_tables(study_table.read_runs(self.main))
+        titles = [line for line in text.splitlines() if line.endswith(":")]
+        # The runs have a hold's vibration and restart error, energy and cost, nothing else.
+        self.assertEqual(titles, ["Vibration after the hold [mm]:", "Restart error one frame after the hold [mm]:",
+                                  "Energy change E(end) - E(0) [mJ]:", "Cost [CPU s of stepping per simulated s]:"])
+        cost = text.split("Cost [CPU s of stepping per simulated s]:")[1].strip().splitlines()
+        self.assertEqual(cost[0], "| method | paper-like 4 | paper-like 1 |")
+        pd10 = next(line for line in cost if line.startswith("| projective-dynamics"))
+        cells = [c.strip() for c in pd10.strip("|").split("|")]
+        # 0.05 s and 9 s over 2.5 s simulated, each in its own scene's column.
+        self.assertEqual([float(c.split()[0]) for c in cells[1:]], [0.02, 3.6])
+        # Leap-frog ran combination 4 only: combination 1's cell is a dash.
+        self.assertTrue(cost[2].startswith("| leapfrog 0.5 ms | 0.04 +- ") and cost[2].endswith("| – |"), cost[2])
+
+    def test_a_scenes_heading_names_its_regime_and_combination(self):
+        self.assertEqual(study_table.scene_heading("combination1_hold_release"), "paper-like 1")
+        self.assertEqual(study_table.scene_heading("combination4_hold_release_attach_knit"), "knit 4")
+        self.assertEqual(study_table.scene_heading("combination1_hold_release_woven"), "woven 1")
+        self.assertEqual(study_table.scene_heading("drape_dress_form"), "drape_dress_form")
+
     def test_a_missing_experiment_exits_with_2(self):
         with contextlib.redirect_stderr(io.StringIO()) as err:
             code = study_table.main(["--small", str(Path(self.tmp.name) / "nowhere"), "--large", str(self.large)])
