@@ -158,14 +158,14 @@ def table(small, large):
     for name, runs in list(chosen.items()) + list(large_groups.items()):
         rows.setdefault(name, runs["order"].iloc[0])
     head = ["method and setting"] + [h for h, *_ in COLUMNS] + ["from"]
-    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    lines = []
     for name in sorted(rows, key=rows.get):
         runs = {"small": chosen.get(name), "large": large_groups.get(name)}
         cells = [real_time(runs[cloth]) if column is None else cell(runs[cloth], column, scale)
                  for _, cloth, column, scale in COLUMNS]
         sources = [r["experiment"].iloc[0] for r in runs.values() if r is not None]
-        lines.append("| " + " | ".join([name] + cells + [", ".join(sources)]) + " |")
-    return "\n".join(lines)
+        lines.append([name] + cells + [", ".join(sources)])
+    return markdown(head, lines)
 
 
 def scene_heading(stem):
@@ -179,22 +179,31 @@ def scene_heading(stem):
 
 def scene_tables(runs):
     """One Markdown table per SCENE_METRICS column that some run has: a row per setting, a
-    column per scene in the order of the runs."""
+    column per scene in the order of the runs; for an experiment of one scene, one table with a
+    column per metric instead."""
     scenes = list(dict.fromkeys(scene_name(r) for r in runs.to_dict("records")))
     runs = runs.assign(scene_stem=[scene_name(r) for r in runs.to_dict("records")])
-    order = runs.groupby("setting")["order"].first().sort_values()
+    settings = runs.groupby("setting")["order"].first().sort_values().index
+    measured = [m for m in SCENE_METRICS
+                if m[0] in runs and pd.to_numeric(runs[m[0]], errors="coerce").notna().any()]
+    if len(scenes) == 1:
+        return markdown(["method"] + [title for _, title, _ in measured],
+                        [[name] + [cell(runs[runs["setting"] == name], column, scale) for column, _, scale in measured]
+                         for name in settings])
     parts = []
-    for column, title, scale in SCENE_METRICS:
-        if column not in runs or not pd.to_numeric(runs[column], errors="coerce").notna().any():
-            continue
-        lines = [f"{title}:", "", "| method | " + " | ".join(scene_heading(s) for s in scenes) + " |",
-                 "|" + "---|" * (len(scenes) + 1)]
-        for name in order.index:
+    for column, title, scale in measured:
+        rows = []
+        for name in settings:
             mine = runs[runs["setting"] == name]
-            lines.append("| " + " | ".join([name] + [cell(mine[mine["scene_stem"] == s], column, scale)
-                                                     for s in scenes]) + " |")
-        parts.append("\n".join(lines))
+            rows.append([name] + [cell(mine[mine["scene_stem"] == s], column, scale) for s in scenes])
+        parts.append(f"{title}:\n\n" + markdown(["method"] + [scene_heading(s) for s in scenes], rows))
     return "\n\n".join(parts)
+
+
+def markdown(head, rows):
+    """A Markdown table of a heading row and rows of cells."""
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    return "\n".join(lines + ["| " + " | ".join(row) + " |" for row in rows])
 
 
 def main(argv=None):

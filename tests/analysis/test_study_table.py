@@ -172,6 +172,15 @@ class TableTest(unittest.TestCase):
         # Leap-frog ran combination 4 only: combination 1's cell is a dash.
         self.assertTrue(cost[2].startswith("| leapfrog 0.5 ms | 0.04 +- ") and cost[2].endswith("| – |"), cost[2])
 
+    def test_one_scene_gives_one_table_with_a_column_per_metric(self):
+        lines = study_table.scene_tables(study_table.read_runs(self.large)).splitlines()
+        self.assertEqual(lines[0], "| method | Restart error one frame after the hold [mm] | "
+                                   "Cost [CPU s of stepping per simulated s] |")
+        rows = {line.split("|")[1].strip(): [c.strip() for c in line.strip("|").split("|")[1:]] for line in lines[2:]}
+        self.assertEqual(rows["leapfrog 0.5 ms"], ["diverged (2 of 2)", "diverged (2 of 2)"])
+        self.assertEqual(float(rows["xpbd 1/30 s, 80 substeps"][0].split()[0]), 20.0)
+        self.assertEqual(float(rows["xpbd 1/30 s, 80 substeps"][1].split()[0]), 1.7)
+
     def test_a_scenes_heading_names_its_regime_and_combination(self):
         self.assertEqual(study_table.scene_heading("combination1_hold_release"), "paper-like 1")
         self.assertEqual(study_table.scene_heading("combination4_hold_release_attach_knit"), "knit 4")
