@@ -166,6 +166,10 @@ def _overlap(a, b):
     return max(0.0, min(a[2], b[2]) - max(a[0], b[0])) * max(0.0, min(a[3], b[3]) - max(a[1], b[1]))
 
 
+# The gid of place_labels' own annotations, which it keeps as boxes of its own.
+PLACED_LABEL = "drape_placed_label"
+
+
 def place_labels(ax, points, texts, color, half=None, joined=False):
     """Annotates data points with short texts, each in the spot around its point (right, left,
     above, below, the corners) whose box overlaps least the labels, points and error bars already
@@ -179,6 +183,11 @@ def place_labels(ax, points, texts, color, half=None, joined=False):
     if not hasattr(ax, "_drape_boxes"):
         ax._drape_boxes = []
     boxes = ax._drape_boxes
+    # Texts other drawers put on the axes (mark_partial's "n of N", mark_failed's notes) are
+    # obstacles too; this function's own labels are in `boxes` already.
+    renderer = ax.figure.canvas.get_renderer()
+    others = [tuple(t.get_window_extent(renderer).extents) for t in ax.texts
+              if t.get_gid() != PLACED_LABEL and t.get_text()]
     screen = [tuple(ax.transData.transform(p)) for p in points]
     boxes += [(x - gap, y - gap, x + gap, y + gap) for x, y in screen]
     cap = CAP_SIZE * px_per_pt
@@ -195,7 +204,7 @@ def place_labels(ax, points, texts, color, half=None, joined=False):
     frame = ax.get_window_extent().extents  # a label outside the axes would cover the ticks
 
     def cost(box):
-        return sum(_overlap(box, b) for b in boxes) + 4 * ((box[2] - box[0]) * (box[3] - box[1]) - _overlap(box, frame))
+        return sum(_overlap(box, b) for b in boxes + others) + 4 * ((box[2] - box[0]) * (box[3] - box[1]) - _overlap(box, frame))
 
     for (x, y), (px, py), text in zip(points, screen, texts):
         w = char * len(text)
@@ -215,7 +224,7 @@ def place_labels(ax, points, texts, color, half=None, joined=False):
         # In points, as the text is: offsets in pixels stayed the screen's at the PNG's 200 dpi
         # while the text doubled, and labels placed apart overlapped.
         ax.annotate(text, (x, y), xytext=(dx / px_per_pt, dy / px_per_pt), textcoords="offset points",
-                    fontsize=MIN_FONT, color=color, va="bottom", ha="left")
+                    fontsize=MIN_FONT, color=color, va="bottom", ha="left", gid=PLACED_LABEL)
 
 
 def mark_partial(ax, points, color="k"):

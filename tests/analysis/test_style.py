@@ -127,6 +127,28 @@ class PlaceLabelsTest(unittest.TestCase):
             self.assertFalse(touches, (label, cap))
         plt.close(fig)
 
+    def test_a_label_keeps_clear_of_a_partial_ensembles_note(self):
+        # Two points of a joined series, the right one from 4 of its 5 runs: mark_partial writes
+        # "4 of 5" above its right, where the label "0.01 s" also fits best unless the note
+        # counts as an obstacle (it did not, and the two overlapped in the accuracy-cost figure).
+        fig, ax = plt.subplots(figsize=(4, 3))
+        xs, ys = [2e-2, 5e-2], [15.0, 17.0]
+        ax.plot(xs, ys, "-o")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlim(5e-3, 10.0)
+        ax.set_ylim(0.1, 40.0)
+        style.mark_partial(ax, [(5e-2, 17.0, 5.0, 4, 5)])
+        style.place_labels(ax, list(zip(xs, ys)), ["0.0333 s", "0.01 s"], "C2", half=[4.0, 6.0], joined=True)
+        fig.set_dpi(style.DPI)
+        fig.canvas.draw()
+        note, *labels = [t for t in ax.texts if t.get_text()]
+        self.assertEqual(note.get_text(), "4 of 5")
+        for label in labels:
+            self.assertFalse(note.get_window_extent().overlaps(label.get_window_extent()),
+                             (label.get_text(), note.get_window_extent(), label.get_window_extent()))
+        plt.close(fig)
+
 class LabelLogTicksTest(unittest.TestCase):
     def labelled(self, low, high):
         """The labelled major ticks inside a log y axis from low to high, after label_log_ticks."""
