@@ -39,8 +39,11 @@ double Bdf2::step(double t_stop) {
   if (m_converged) {
     converged_step(t_next, gamma);
   } else {
+    // IPC's lagged friction frozen at the step's start, as implicit-euler's (docs/friction.md).
+    m_system.freeze_friction(positions(), h);
     m_linearised.take(m_t, h, gamma, m_has_history ? &m_history_term : nullptr, m_y,
                       m_counters);
+    m_system.release_friction();
     m_system.project(t_next, positions(), velocities());
   }
   // A step cut short (a sliver before an output or event time) is not kept as the history's
@@ -87,7 +90,8 @@ IntegratorDeclaration bdf2_declaration() {
           },
           // implicit-euler's keys and defaults: the linear solver's and `solve`
           // (docs/integrators/bdf2.md, "Keys")
-          {false, false, true, true, false, "pcg-multigrid", 1e-3}};
+          {false, false, true, true, false, "pcg-multigrid", 1e-3},
+          true};
 }
 
 }  // namespace drape

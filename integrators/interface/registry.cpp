@@ -97,7 +97,7 @@ std::vector<IntegratorDeclaration> built_in_declarations() {
   };
   for (const ArkodeIntegrator& a : arkode_integrators)
     all.push_back(
-        {a.name, a.family, 3, true, a.description, {}, make_arkode_stepper, a.named_keys});
+        {a.name, a.family, 3, true, a.description, {}, make_arkode_stepper, a.named_keys, true});
   return all;
 }
 
