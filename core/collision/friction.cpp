@@ -7,6 +7,31 @@
 
 namespace drape {
 
+Vec3 smooth_coulomb_force(const Vec3& contact, const Vec3& v, double mu, double epsilon_v) {
+  const double lambda = contact.norm();
+  if (!(lambda > 0.0)) return Vec3::Zero();
+  const Vec3 normal = contact / lambda;
+  const Vec3 tangential = v - v.dot(normal) * normal;
+  return -(mu * lambda * friction_f1_over_y(tangential.norm(), epsilon_v)) * tangential;
+}
+
+Mat3 smooth_coulomb_velocity_jacobian(const Vec3& contact, const Vec3& v, double mu,
+                                      double epsilon_v) {
+  const double lambda = contact.norm();
+  if (!(lambda > 0.0)) return Mat3::Zero();
+  const Vec3 normal = contact / lambda;
+  const Vec3 tangential = v - v.dot(normal) * normal;
+  const double y = tangential.norm();
+  const double across = friction_f1_over_y(y, epsilon_v);
+  // In the tangent plane: f1/y across v_t and f1' along it; nothing along the normal.
+  Mat3 jacobian = across * (Mat3::Identity() - normal * normal.transpose());
+  if (y > 0.0) {
+    const Vec3 along = tangential / y;
+    jacobian += (friction_f1_slope(y, epsilon_v) - across) * along * along.transpose();
+  }
+  return -mu * lambda * jacobian;
+}
+
 void LaggedFriction::freeze(const Collision& collision, ConstVecRef x_start, double h) {
   const auto n = static_cast<std::size_t>(x_start.size() / 3);
   m_eps = m_epsilon * h;

@@ -14,6 +14,8 @@
 //   smoothed. Its Hessian mu lambda T [f1/y (I - u u^T / y^2) + f1' u u^T / y^2] T^T has the
 //   eigenvalues mu lambda f1(y) / y and mu lambda f1'(y), both >= 0: it is positive
 //   semi-definite as it stands, the projection ipc-toolkit applies changes nothing.
+// - The regularised Coulomb force of the current state (smooth_coulomb_force), for right-hand
+//   sides of ODEs (the arkode-* integrators), with the same mollifier in velocity.
 // - The velocity-level friction of Bridson, Fedkiw and Anderson 2002 ("Robust treatment of
 //   collisions, contact and friction for cloth animation", SIGGRAPH, section 7.2): after a
 //   velocity change dv_n along the normal, the tangential velocity v_t shrinks by
@@ -67,6 +69,19 @@ inline Vec3 coulomb_velocity_friction(const Vec3& motion, const Vec3& normal,
   if (!(speed > 0.0)) return motion;
   return along + std::max(0.0, 1.0 - mu * std::abs(normal_change) / speed) * tangential;
 }
+
+/// The regularised Coulomb force of a particle at velocity v on which the object pushes with
+/// `contact` (docs/friction.md, "Smooth Coulomb force"): with lambda = |contact|, n = contact /
+/// lambda and v_t = v - (v . n) n,
+///     F = -mu lambda f1(|v_t|, epsilon_v) v_t / |v_t|,
+/// the lagged potential's force with the step's displacement over eps = epsilon_v h replaced by
+/// the velocity over epsilon_v: the form of an ODE's right-hand side, which has no step start.
+Vec3 smooth_coulomb_force(const Vec3& contact, const Vec3& v, double mu, double epsilon_v);
+/// dF/dv of smooth_coulomb_force with lambda and n held (their dependence on x is left out):
+/// -mu lambda [f1/y (P - t t^T) + f1'(y) t t^T], P = I - n n^T, y = |v_t|, t = v_t / y; a
+/// symmetric negative semi-definite damping (-2 mu lambda / epsilon_v P at v_t = 0).
+Mat3 smooth_coulomb_velocity_jacobian(const Vec3& contact, const Vec3& v, double mu,
+                                      double epsilon_v);
 
 /// The lagged friction potential of one step (IPC section 5): normal force magnitudes and
 /// tangent bases frozen at the step's start, per cloth particle.

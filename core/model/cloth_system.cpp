@@ -44,6 +44,8 @@ void ClothSystem::evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceS
   const Vec3 weight = m * m_params.gravity;
   const bool with_collision = m_dummy && split.with_collision;
   const bool with_friction = with_collision && m_friction.frozen();
+  const bool with_smooth_friction = smooth_friction(split);
+  const double mu = m_friction.coefficient(), epsilon_v = m_friction.epsilon();
   std::optional<ConstComponents> springs;
   if (with_springs) springs.emplace(m_spring_forces.evaluate(x, v, m_cloth.params.damping_spring));
 
@@ -54,7 +56,12 @@ void ClothSystem::evaluate_forces(ConstVecRef x, ConstVecRef v, VecRef f, ForceS
       Vec3 total = Vec3::Zero();
       if (springs) total = Vec3((*springs)(i, 0), (*springs)(i, 1), (*springs)(i, 2));
       if (with_body) total += weight - c_air * particle(v, i);
-      if (with_collision) total += m_collision.force(i, particle(x, i));
+      if (with_collision || with_smooth_friction) {
+        const Vec3 contact = m_collision.force(i, particle(x, i));
+        if (with_collision) total += contact;
+        if (with_smooth_friction)
+          total += smooth_coulomb_force(contact, particle(v, i), mu, epsilon_v);
+      }
       if (with_friction) total += m_friction.force(i, particle(x, i));
       if constexpr (per_mass) total /= m;
       particle(f, i) = total;
@@ -171,6 +178,18 @@ Mat3 ClothSystem::air_jacobian(ForceSplit split) const {
   return split.with_body ? Mat3(-m_cloth.params.damping_air * Mat3::Identity()) : Mat3::Zero();
 }
 
+bool ClothSystem::smooth_friction(ForceSplit split) const {
+  return split.with_smooth_friction && m_dummy && m_friction.coefficient() > 0.0;
+}
+
+Mat3 ClothSystem::particle_velocity_jacobian(ConstVecRef x, ConstVecRef v, ForceSplit split,
+                                             int i, const Mat3& air) const {
+  if (!smooth_friction(split)) return air;
+  return air + smooth_coulomb_velocity_jacobian(m_collision.force(i, particle(x, i)),
+                                                particle(v, i), m_friction.coefficient(),
+                                                m_friction.epsilon());
+}
+
 // Calls visit(i, j, Jx, Jv) for every pair block: j >= 0 for springs (the pair pattern of
 // forces.hpp), j < 0 for a block acting on particle i alone (dF_i/dx_i, dF_i/dv_i).
 template <class Visit>
@@ -182,10 +201,11 @@ void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool def
     spring_jacobian_block(x, v, definite, e, jx, jv);
     visit(springs.first[e], springs.second[e], jx, jv);
   }
-  if (!split.with_collision && !split.with_body) return;
+  if (!split.with_collision && !split.with_body && !smooth_friction(split)) return;
   const Mat3 air = air_jacobian(split);
   for (int i = 0; i < num_particles(); ++i)
-    visit(i, -1, particle_position_jacobian(x, definite, split, i), air);
+    visit(i, -1, particle_position_jacobian(x, definite, split, i),
+          particle_velocity_jacobian(x, v, split, i, air));
 }
 
 void ClothSystem::force_jacobian_times(ConstVecRef x, ConstVecRef v,
@@ -272,7 +292,7 @@ void ClothSystem::force_jacobian_blocks(ConstVecRef x, ConstVecRef v, bool defin
                    }
                  }
                });
-  const bool with_particles = split.with_collision || split.with_body;
+  const bool with_particles = split.with_collision || split.with_body || smooth_friction(split);
   const Mat3 air = air_jacobian(split);
   parallel_for(num_particles(), threaded_particles_from,
                [&](std::ptrdiff_t begin, std::ptrdiff_t end) {
@@ -281,7 +301,9 @@ void ClothSystem::force_jacobian_blocks(ConstVecRef x, ConstVecRef v, bool defin
                    blocks.particle_x[k] = with_particles
                                               ? particle_position_jacobian(x, definite, split, i)
                                               : Mat3::Zero();
-                   blocks.particle_v[k] = with_particles ? air : Mat3::Zero();
+                   blocks.particle_v[k] = with_particles
+                                              ? particle_velocity_jacobian(x, v, split, i, air)
+                                              : Mat3::Zero();
                  }
                });
 }

@@ -37,9 +37,13 @@ struct EnergyBreakdown {
 /// section 5): the springs (elastic and spring damping), the collision force, the body forces
 /// (gravity and air damping); `kinematics` says whether y' carries x' = v and the fixed
 /// particles' prescribed motion (the implicit side of a split does, the explicit side does not).
-/// The two sides of a split add up to `all`.
+/// The two sides of a split add up to `all`. `with_smooth_friction` adds the regularised
+/// Coulomb force of the current state (friction.hpp, smooth_coulomb_force; nothing with
+/// collision.friction = 0), which only a right-hand side without a step start asks for
+/// (arkode-*); the other integrators freeze the lagged potential or filter velocities instead.
 struct ForceSplit {
   bool with_springs, with_collision, with_body, with_kinematics;
+  bool with_smooth_friction = false;
 
   static const ForceSplit all;
   static const ForceSplit springs;                ///< f_I of the springs-only split
@@ -145,6 +149,11 @@ class ClothSystem {
   Mat3 particle_position_jacobian(ConstVecRef x, bool definite, ForceSplit split, int i) const;
   /// dF_i/dv_i of the air damping, if `split` selects it.
   Mat3 air_jacobian(ForceSplit split) const;
+  /// Whether `split` takes the smooth Coulomb force (a friction coefficient and an object).
+  bool smooth_friction(ForceSplit split) const;
+  /// dF_i/dv_i of the air damping and the smooth Coulomb force that `split` selects.
+  Mat3 particle_velocity_jacobian(ConstVecRef x, ConstVecRef v, ForceSplit split, int i,
+                                  const Mat3& air) const;
   template <class Visit>
   void for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite, ForceSplit split,
                                Visit&& visit) const;

@@ -67,12 +67,18 @@ ArkodeStepper::~ArkodeStepper() {
 
 // arkode-imex's split (docs/model.md section 5): the springs implicit, and with
 // `imex_split = springs+collision` the contact force too; what is left is explicit. The other
-// kinds have one part, which evaluates every force.
+// kinds have one part, which evaluates every force. The smooth Coulomb force (docs/friction.md;
+// nothing with collision.friction = 0), a stiff damper of 2 mu lambda / epsilon_v at rest, is
+// with the implicit part wherever there is one.
 ArkodeStepper::Split ArkodeStepper::split_of(ArkodeKind kind, const IntegratorOptions& options) {
-  if (kind != ArkodeKind::imex) return {ForceSplit::all, ForceSplit::all};
-  if (options.imex_split == "springs+collision")
-    return {ForceSplit::springs_and_collision, ForceSplit::body};
-  return {ForceSplit::springs, ForceSplit::non_springs};
+  Split split{ForceSplit::all, ForceSplit::all};
+  if (kind == ArkodeKind::imex && options.imex_split == "springs+collision")
+    split = {ForceSplit::springs_and_collision, ForceSplit::body};
+  else if (kind == ArkodeKind::imex)
+    split = {ForceSplit::springs, ForceSplit::non_springs};
+  (kind == ArkodeKind::explicit_rk ? split.explicit_part : split.implicit_part)
+      .with_smooth_friction = true;
+  return split;
 }
 
 void ArkodeStepper::reset(double t, const Eigen::VectorXd& y) {
@@ -369,7 +375,7 @@ std::vector<IntegratorDeclaration> arkode_declarations() {
                      return std::make_unique<ArkodeStepper>(system, *arkode_kind(options.name),
                                                             options);
                    },
-                   a.named_keys});
+                   a.named_keys, true});
   return all;
 }
 

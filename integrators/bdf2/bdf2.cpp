@@ -46,11 +46,14 @@ double Bdf2::step(double t_stop) {
   if (m_converged) {
     converged_step(t_next, gamma);
   } else {
+    // IPC's lagged friction frozen at the step's start, as implicit-euler's (docs/friction.md).
+    m_system.freeze_friction(positions(), h);
     if (m_from_predictor)
       corrected_step(t_next, h, gamma, w);
     else
       m_linearised.take(m_t, h, gamma, m_has_history ? &m_history_term : nullptr, m_y,
                         m_counters);
+    m_system.release_friction();
     m_system.project(t_next, positions(), velocities());
   }
   // A step cut short (a sliver before an output or event time) is not kept as the history's
@@ -129,7 +132,7 @@ IntegratorDeclaration bdf2_declaration() {
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<Bdf2>(system, options);
           },
-          declared_keys};
+          declared_keys, true};
 }
 
 }  // namespace drape

@@ -42,6 +42,27 @@ void IncrementalPotential::freeze_damping(ConstVecRef z) {
                        length < degenerate_length ? Vec3::Zero() : Vec3(d / length);
                  }
                });
+  m_contacts.clear();
+  if (!m_split.with_smooth_friction || !m_system.dummy() ||
+      m_system.friction().coefficient() == 0.0)
+    return;
+  m_contacts.resize(static_cast<std::size_t>(m_system.num_particles()));
+  for (int i = 0; i < m_system.num_particles(); ++i)
+    m_contacts[static_cast<std::size_t>(i)] = m_system.collision().force(i, particle(x, i));
+}
+
+double IncrementalPotential::friction_dissipation(ConstVecRef v) const {
+  const auto& fixed = m_system.constraints().mask();
+  const double mu = m_system.friction().coefficient(), epsilon_v = m_system.friction().epsilon();
+  double sum = 0.0;
+  for (std::size_t i = 0; i < m_contacts.size(); ++i) {
+    const double lambda = m_contacts[i].norm();
+    if (fixed[i] || !(lambda > 0.0)) continue;
+    const Vec3 normal = m_contacts[i] / lambda;
+    const Vec3 vi = particle(v, static_cast<Eigen::Index>(i));
+    sum += mu * lambda * friction_f0((vi - vi.dot(normal) * normal).norm(), epsilon_v);
+  }
+  return sum;
 }
 
 void IncrementalPotential::state_of(ConstVecRef v, VecRef z) const {
@@ -105,6 +126,11 @@ double IncrementalPotential::value(ConstVecRef z, double& magnitude) const {
   if (m_split.with_collision) {
     e += u.collision + u.friction;
     magnitude += u.collision + u.friction;
+  }
+  if (!m_contacts.empty()) {
+    const double dissipation = m_gamma * friction_dissipation(v);
+    e += dissipation;
+    magnitude += dissipation;
   }
   if (m_split.with_body) {
     const double dissipation = m_gamma * 0.5 * m_system.cloth().params.damping_air * air;

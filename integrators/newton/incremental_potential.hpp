@@ -10,7 +10,10 @@
 // F = -grad U(x) - grad_v R(v) for the elastic, collision and gravity energy U (and the lagged
 // friction potential of docs/model.md section 4.12 while the system holds one frozen) and the Rayleigh
 // dissipation R of air damping (c_air |v|^2 / 2) and spring damping (c ((v_j - v_i) . u)^2 / 2).
-// The spring direction u turns with x, so R is frozen at the iterate x_k: then
+// With `with_smooth_friction`, R also has the smooth Coulomb force's dissipation
+// mu lambda f0(|v_t|, epsilon_v) per particle (docs/friction.md), its contact force lambda n
+// frozen at x_k likewise. The spring direction u turns with x, so R is frozen at the iterate
+// x_k: then
 //     E_k(v) = 1/2 (v - a_v)^T M (v - a_v) + U(a_x + gamma v) + gamma R_k(v)
 // has grad E_k(v_k) = g(v_k) exactly, and its Hessian at v_k is S = M - gamma D - gamma^2 K
 // with the definite K (ReducedNewtonSolver). Fixed particles take their stage values
@@ -31,7 +34,8 @@ class IncrementalPotential {
   /// Starts a stage: z = a + gamma f_I(t, z) with known part `a` (6N). Sets the fixed rows of
   /// `z` (6N, the initial guess) to their stage values and the free positions to a_x + gamma v.
   void begin_stage(double t, double gamma, ConstVecRef a, VecRef z);
-  /// Freezes the spring damping directions at the positions of `z` (E_k of the docs).
+  /// Freezes the spring damping directions and, with the smooth friction, the contact forces
+  /// at the positions of `z` (E_k of the docs).
   void freeze_damping(ConstVecRef z);
   /// z with free velocities v: x = a_x + gamma v on free particles, fixed rows unchanged.
   void state_of(ConstVecRef v, VecRef z) const;
@@ -46,11 +50,15 @@ class IncrementalPotential {
   double time() const { return m_t; }
 
  private:
+  /// sum over free particles of mu lambda f0(|v_t|, epsilon_v), lambda n = m_contacts[i].
+  double friction_dissipation(ConstVecRef v) const;
+
   const ClothSystem& m_system;
   ForceSplit m_split;
   double m_t = 0.0, m_gamma = 0.0;
   Eigen::VectorXd m_a, m_fixed_rhs;
   std::vector<Vec3> m_directions;  // spring e's unit direction u at x_k (zero if degenerate)
+  std::vector<Vec3> m_contacts;    // particle i's contact force at x_k (smooth friction only)
   mutable Eigen::VectorXd m_force;
 };
 

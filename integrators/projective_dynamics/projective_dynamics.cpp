@@ -151,8 +151,18 @@ double ProjectiveDynamics::step(double t_stop) {
   if (m_record) m_trace.push_back(end);
   m_counters.add_potential_change(start, end, std::max(start_terms, end_terms));
   m_counters.newton_iters += m_iterations;
+  apply_friction(h);
   m_system.project(t_next, x, v);
   return accept_fixed_step(t_next);
+}
+
+void ProjectiveDynamics::apply_friction(double h) {
+  if (m_system.friction().coefficient() == 0.0) return;
+  VecMap x = positions(), v = velocities();
+  m_system.apply_velocity_friction(x, v, h);
+  // The step's positions follow its velocities (x = x_n + h v, backward Euler's relation), so
+  // that a particle whose tangential velocity friction stopped has not moved along the surface.
+  for (const int i : m_matrix.slots()) particle(x, i) = particle(m_start, i) + h * particle(v, i);
 }
 
 double ProjectiveDynamics::potential(double h) const {
@@ -189,7 +199,9 @@ IntegratorDeclaration projective_dynamics_declaration() {
                               true)},
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<ProjectiveDynamics>(system, options);
-          }};
+          },
+          {},
+          true};
 }
 
 }  // namespace drape

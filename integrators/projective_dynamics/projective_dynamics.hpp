@@ -23,8 +23,9 @@ namespace drape {
 /// itself. Particles that have touched the object get the contact weight 2 k_collision on
 /// their diagonal (a refactorisation when one joins). With `chebyshev`, Wang's semi-iterative
 /// acceleration ("A Chebyshev semi-iterative approach for accelerating projective and
-/// position-based dynamics", ACM TOG 34(6), 2015) with spectral radius estimate `rho`. Then the
-/// projection of docs/model.md section 5. docs/integrators/projective-dynamics.md.
+/// position-based dynamics", ACM TOG 34(6), 2015) with spectral radius estimate `rho`. Then
+/// velocity-level Coulomb friction (apply_friction) and the projection of docs/model.md
+/// section 5. docs/integrators/projective-dynamics.md.
 class ProjectiveDynamics final : public Integrator {
  public:
   /// Reads dt, max_steps and the keys iterations, chebyshev and rho from `options`.
@@ -42,6 +43,11 @@ class ProjectiveDynamics final : public Integrator {
  private:
   /// Factors A again when the fixed set or the step size changed since the last factorisation.
   void update_factor(double h);
+  /// Velocity-level Coulomb friction after the iterations (Bridson et al. 2002, section 7.2;
+  /// docs/friction.md): the normal impulse h |F_c(x_{n+1})| cuts each free particle's
+  /// tangential velocity, and its position follows, x_{n+1} = x_n + h v_{n+1}. A no-op without
+  /// friction.
+  void apply_friction(double h);
   /// Incremental potential at the positions of m_y (free particles' terms; the fixed ones'
   /// are constants of the step); in `magnitude` the sum of its terms' absolute values.
   double potential(double h, double& magnitude) const;

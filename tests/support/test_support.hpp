@@ -171,12 +171,14 @@ inline std::unique_ptr<ClothSystem> pinned_test_cloth(double damping_spring = 0.
 
 /// A damped 4 x 5 cloth, one corner pinned, with a sphere just behind its plane: most particles
 /// are within the collision threshold (for the split of the forces with contact).
-inline std::unique_ptr<ClothSystem> cloth_against_sphere(CollisionModel model) {
+inline std::unique_ptr<ClothSystem> cloth_against_sphere(CollisionModel model,
+                                                        double friction = 0.0) {
   ClothParams p = small_cloth(4, 5);
   p.damping_spring = 0.05;
   p.damping_air = 0.01;
   ForceParams forces;
   forces.collision.model = model;
+  forces.collision.friction = friction;
   const auto sphere = std::make_shared<const Dummy>(make_dummy(
       nlohmann::json{{"builtin", "sphere"}, {"radius", 0.05}, {"center", {0.04, 0.97, -0.054}}},
       "test", "dummy", "."));

@@ -4,8 +4,9 @@
 // creeps at the closed-form speed where the mollified friction balances the slope) and slides
 // when tan(theta) > mu with Coulomb's closed-form acceleration g (sin theta - mu cos theta)
 // (measured within 0.13 % to 0.92 %), for every integrator that has friction:
-// the velocity-level form (leap-frog, symplectic Euler), the position-based form (xpbd) and
-// IPC's lagged potential (converged implicit Euler, vbd).
+// the velocity-level form (leap-frog, symplectic Euler, projective dynamics), the position-based
+// form (xpbd), IPC's lagged potential (converged implicit Euler and BDF2, vbd) and the smooth
+// Coulomb force of the right-hand side (arkode-erk, -dirk, -imex).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -67,50 +68,75 @@ struct Incline {
   double cos_theta = 1.0, sin_theta = 0.0;
 };
 
-const nlohmann::json methods[] = {
-    {{"name", "leapfrog"}, {"dt", 1e-4}},
-    {{"name", "symplectic-euler"}, {"dt", 1e-4}},
-    {{"name", "xpbd"}, {"dt", 1e-3}, {"substeps", 10}},
-    {{"name", "implicit-euler"}, {"dt", 2.5e-4}, {"solve", "converged"}, {"rtol", 1e-9},
-     {"atol", 1e-12}},
-    {{"name", "vbd"}, {"dt", 2.5e-4}, {"iterations", 20}},
+// How a method holds a particle below the friction angle (docs/friction.md): the
+// velocity-level and position-based forms stop it; IPC's lagged potential and the smooth
+// Coulomb force of an ODE's right-hand side let it creep at the speed where the mollified
+// friction balances the slope; a one-solve step, which linearises the lagged potential at zero
+// tangential motion, holds it by a linear damper of 2 mu lambda / epsilon_v and bounds no force
+// by mu lambda (docs/friction.md): it is not tested for sliding.
+enum class Hold { stops, creeps, damps };
+
+struct Method {
+  nlohmann::json options;
+  Hold hold;
+};
+
+const Method methods[] = {
+    {{{"name", "leapfrog"}, {"dt", 1e-4}}, Hold::stops},
+    {{{"name", "symplectic-euler"}, {"dt", 1e-4}}, Hold::stops},
+    {{{"name", "xpbd"}, {"dt", 1e-3}, {"substeps", 10}}, Hold::stops},
+    {{{"name", "projective-dynamics"}, {"dt", 2.5e-4}, {"iterations", 20}}, Hold::stops},
+    {{{"name", "implicit-euler"}, {"dt", 2.5e-4}, {"solve", "converged"}, {"rtol", 1e-9},
+      {"atol", 1e-12}},
+     Hold::creeps},
+    {{{"name", "bdf2"}, {"dt", 2.5e-4}, {"solve", "converged"}, {"rtol", 1e-9}, {"atol", 1e-12}},
+     Hold::creeps},
+    {{{"name", "bdf2"}, {"dt", 2.5e-4}, {"linear_tolerance", 1e-10}}, Hold::damps},
+    {{{"name", "vbd"}, {"dt", 2.5e-4}, {"iterations", 20}}, Hold::creeps},
+    {{{"name", "arkode-erk"}, {"dt", 1e-4}}, Hold::creeps},
+    {{{"name", "arkode-dirk"}, {"dt", 2.5e-4}, {"rtol", 1e-9}, {"atol", 1e-12}}, Hold::creeps},
+    {{{"name", "arkode-imex"}, {"dt", 1e-4}, {"rtol", 1e-9}, {"atol", 1e-12}}, Hold::creeps},
 };
 
 TEST(FrictionIncline, StickingBelowTheFrictionAngle) {
   const double polar = 30.0 * M_PI / 180.0, mu = 0.8;  // tan 30 deg = 0.577 < 0.8
-  for (const nlohmann::json& options : methods) {
+  for (const Method& method : methods) {
     Incline incline(polar, mu);
     ASSERT_LT(incline.sin_theta / incline.cos_theta, mu);
     const double duration = 1.0;
-    const double moved = incline.displacement(options, duration).norm();
-    EXPECT_LT(moved, epsilon_v * duration) << options.dump();
-    // The lagged potential holds the slope's pull m g sin(theta) = mu lambda f1 at the creep
-    // speed where f1 = r (2 - r) = tan(theta) / mu, r = speed / epsilon_v (measured 4.737e-4 m;
-    // the velocity-level and position-based forms stop the particle: 1e-7 m, its normal
-    // settling).
-    const std::string name = options["name"];
-    if (name == "implicit-euler" || name == "vbd") {
-      const double creep =
-          epsilon_v * (1.0 - std::sqrt(1.0 - incline.sin_theta / incline.cos_theta / mu));
-      EXPECT_NEAR(moved, creep * duration, 0.01 * creep * duration) << name;
+    const double moved = incline.displacement(method.options, duration).norm();
+    EXPECT_LT(moved, epsilon_v * duration) << method.options.dump();
+    // The lagged potential and the smooth force hold the slope's pull m g sin(theta) =
+    // mu lambda f1 at the creep speed where f1 = r (2 - r) = tan(theta) / mu, r = speed /
+    // epsilon_v (measured 4.737e-4 m); the velocity-level and position-based forms stop the
+    // particle (1e-7 m, its normal settling).
+    const double slope = incline.sin_theta / incline.cos_theta;
+    if (method.hold == Hold::creeps) {
+      const double creep = epsilon_v * (1.0 - std::sqrt(1.0 - slope / mu));
+      EXPECT_NEAR(moved, creep * duration, 0.01 * creep * duration) << method.options.dump();
+    } else if (method.hold == Hold::damps) {
+      // m g sin(theta) = 2 mu lambda / epsilon_v * speed, lambda = m g cos(theta).
+      const double creep = epsilon_v * slope / (2.0 * mu);
+      EXPECT_NEAR(moved, creep * duration, 0.01 * creep * duration) << method.options.dump();
     } else {
-      EXPECT_LT(moved, 1e-3 * epsilon_v * duration) << name;
+      EXPECT_LT(moved, 1e-3 * epsilon_v * duration) << method.options.dump();
     }
   }
 }
 
 TEST(FrictionIncline, SlidingAboveTheFrictionAngleWithCoulombsAcceleration) {
   const double polar = 30.0 * M_PI / 180.0, mu = 0.3;  // tan 30 deg = 0.577 > 0.3
-  for (const nlohmann::json& options : methods) {
+  for (const Method& method : methods) {
+    if (method.hold == Hold::damps) continue;
     Incline incline(polar, mu);
     const double expected = g * (incline.sin_theta - mu * incline.cos_theta);
     // Over a short time, while the slope and the friction's mollified start (speeds below
     // epsilon_v, reached in 0.4 ms) change the distance by well under a percent.
     const double duration = 0.04;
-    const Vec3 moved = incline.displacement(options, duration);
+    const Vec3 moved = incline.displacement(method.options, duration);
     const double acceleration = 2.0 * moved.norm() / (duration * duration);
-    EXPECT_NEAR(acceleration, expected, 0.02 * expected) << options.dump();
-    EXPECT_LT(moved.y(), 0.0) << options.dump();  // downhill
+    EXPECT_NEAR(acceleration, expected, 0.02 * expected) << method.options.dump();
+    EXPECT_LT(moved.y(), 0.0) << method.options.dump();  // downhill
   }
 }
 

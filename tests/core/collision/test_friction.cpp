@@ -1,7 +1,8 @@
 // Coulomb friction against the object (docs/model.md section 4.12): the mollifier's
 // derivatives, the lagged potential's gradient (the friction force) and Hessian against central
 // finite differences in both regimes (sticking |u| < epsilon_v h and sliding), the Hessian's
-// semi-definiteness and closed-form eigenvalues, and the velocity-level Coulomb bound.
+// semi-definiteness and closed-form eigenvalues, the smooth Coulomb force's velocity Jacobian,
+// and the velocity-level Coulomb bound.
 #include "core/collision/friction.hpp"
 
 #include <gtest/gtest.h>
@@ -121,6 +122,45 @@ TEST(LaggedFriction, HessianIsSemiDefiniteWithTheClosedFormEigenvalues) {
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(eig.eigenvalues()[k], expected[k], 1e-9 * expected[2]) << y << " " << k;
   }
+}
+
+// The regularised Coulomb force of an ODE's right-hand side: its velocity Jacobian against
+// central differences in v, within the mollifier (|v_t| < epsilon_v) and beyond it, where it is
+// Coulomb's mu lambda against v_t; nothing along the normal.
+TEST(SmoothCoulombForce, VelocityJacobianMatchesFiniteDifferencesAndBeyondEpsilonIsCoulomb) {
+  const double mu = 0.4, epsilon_v = 1e-3;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 8; ++trial) {
+    const Vec3 contact = (0.01 + 0.005 * u(rng)) * Vec3(u(rng), 1.0, u(rng)).normalized();
+    const double lambda = contact.norm();
+    const Vec3 normal = contact / lambda;
+    for (const double speed : {0.0, 0.3 * epsilon_v, 0.8 * epsilon_v, 3.0 * epsilon_v,
+                               50.0 * epsilon_v}) {
+      const Vec3 direction = Vec3(u(rng), u(rng), u(rng)).normalized();
+      const Vec3 tangent = (direction - direction.dot(normal) * normal).normalized();
+      const Vec3 v = speed * tangent + 0.2 * u(rng) * normal;
+      // At v_t = 0 the force's second-order term -mu lambda |v_t| v_t / epsilon_v^2 has zero
+      // derivative but central differences of size d see d / epsilon_v of it: a smaller step.
+      const double d = (speed == 0.0 ? 1e-7 : 1e-4) * epsilon_v;
+      Mat3 fd;
+      for (int a = 0; a < 3; ++a) {
+        const Vec3 step = d * Vec3::Unit(a);
+        fd.col(a) = (smooth_coulomb_force(contact, v + step, mu, epsilon_v) -
+                     smooth_coulomb_force(contact, v - step, mu, epsilon_v)) / (2 * d);
+      }
+      const Mat3 jacobian = smooth_coulomb_velocity_jacobian(contact, v, mu, epsilon_v);
+      EXPECT_LT((jacobian - fd).norm(), 1e-6 * jacobian.norm()) << trial << " " << speed;
+      EXPECT_LT((jacobian * normal).norm(), 1e-12 * jacobian.norm());
+      const Vec3 force = smooth_coulomb_force(contact, v, mu, epsilon_v);
+      EXPECT_NEAR(force.dot(normal), 0.0, 1e-15);
+      EXPECT_NEAR(force.norm(), mu * lambda * friction_f1(speed, epsilon_v), 1e-12 * mu * lambda);
+      if (speed > 0.0) {
+        EXPECT_NEAR(force.dot(tangent), -force.norm(), 1e-15) << "against v_t";
+      }
+    }
+  }
+  EXPECT_EQ(smooth_coulomb_force(Vec3::Zero(), Vec3(1.0, 2.0, 3.0), mu, epsilon_v), Vec3::Zero());
 }
 
 TEST(CoulombVelocityFriction, ShrinksTheTangentialPartByMuTimesTheNormalChange) {

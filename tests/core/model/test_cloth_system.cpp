@@ -281,5 +281,55 @@ TEST(ClothSystem, FrozenFrictionIsInTheForcesEnergyAndJacobianAndReleasedIsGone)
   EXPECT_NEAR(particle(w, i).dot(normal), -0.1, 1e-12);
 }
 
+// docs/friction.md, "Smooth Coulomb force": a split that asks for it gains, per particle in
+// contact, smooth_coulomb_force at the particle's own velocity; its velocity Jacobian is in
+// dF/dv (against force differences in v, with the air damping's beside it); with mu = 0 the
+// forces are the frictionless ones bit for bit.
+TEST(ClothSystem, SmoothFrictionIsInTheSplitsThatAskAndItsJacobianInDfDv) {
+  ClothParams p = testing::small_cloth(3, 3);
+  p.damping_air = 0.01;
+  const auto sphere = std::make_shared<const Dummy>(make_dummy(
+      nlohmann::json{{"builtin", "sphere"}, {"radius", 0.05}, {"center", {0.02, 0.97, 0.055}}},
+      "test", "dummy", "."));
+  ForceSplit with_friction = ForceSplit::all;
+  with_friction.with_smooth_friction = true;
+  for (const double mu : {0.0, 0.4}) {
+    ForceParams params;
+    params.collision = CollisionParams{0.01, 1000.0, CollisionModel::smooth, mu, 1e-3};
+    ClothSystem s(build_cloth(p), sphere, params);
+    const Eigen::Index n3 = 3 * s.num_particles();
+    const Eigen::VectorXd x = s.cloth().rest_positions;  // within delta of the sphere
+    // Speeds around epsilon_v: within the mollifier and beyond it.
+    const Eigen::VectorXd v = jitter(Eigen::VectorXd::Zero(n3), 2e-3, 5);
+    Eigen::VectorXd plain(n3), with(n3);
+    s.forces(x, v, plain, ForceSplit::all);
+    s.forces(x, v, with, with_friction);
+    if (mu == 0.0) {
+      EXPECT_EQ(with, plain);
+      continue;
+    }
+    int touching = 0;
+    for (int i = 0; i < s.num_particles(); ++i) {
+      const Vec3 contact = s.collision().force(i, particle(x, i));
+      touching += contact.norm() > 0.0;
+      const Vec3 expected = smooth_coulomb_force(contact, particle(v, i), mu, 1e-3);
+      EXPECT_LT((particle(with, i) - particle(plain, i) - expected).norm(),
+                1e-12 * (1.0 + particle(plain, i).norm()));
+    }
+    ASSERT_GT(touching, 0);
+    const Eigen::VectorXd dv = jitter(Eigen::VectorXd::Zero(n3), 1.0, 6);
+    Eigen::VectorXd product(n3), difference(n3), ahead(n3), behind(n3);
+    s.force_jacobian_times(x, v, Eigen::VectorXd::Zero(n3), dv, product, false, with_friction);
+    const double d = 1e-9;
+    s.forces(x, v + d * dv, ahead, with_friction);
+    s.forces(x, v - d * dv, behind, with_friction);
+    difference = (ahead - behind) / (2 * d);
+    EXPECT_LT((product - difference).norm(), 1e-5 * difference.norm());
+    Eigen::SparseMatrix<double> dfdx, dfdv;
+    s.force_jacobians(x, v, true, dfdx, dfdv, with_friction);
+    EXPECT_LT((dfdv * dv - product).norm(), 1e-12 * product.norm());
+  }
+}
+
 }  // namespace
 }  // namespace drape
