@@ -1,4 +1,4 @@
-// drapelab_bench: the 1/30 s step of issue 13's implicit methods at 32 x 32, 64 x 64 and
+// drapelab_bench: the 1/30 s step of the implicit methods at 32 x 32, 64 x 64 and
 // 128 x 128: implicit-euler (one linearised solve, its default pcg-multigrid) and arkode-dirk
 // with the line-search Newton, SDIRK2 (ARKODE_SDIRK_2_1_2, and Alexander's as a user table) and
 // a third-order ESDIRK (ARKODE_ESDIRK325L2SA_5_2_3), on a free swinging sheet and on the dress

@@ -30,7 +30,7 @@ inline std::unique_ptr<ClothSystem> sheet_of(int n, double particle_mass, Eigen:
 }
 
 /// The sheet of 0.2 kg: refined, its particles get lighter and gamma^2 k / m, the stiffness S
-/// holds against the mass, grows 4x per refinement (issue 13's scaling benchmark).
+/// holds against the mass, grows 4x per refinement (docs/performance/implicit-step.md's scaling benchmark).
 inline std::unique_ptr<ClothSystem> swinging_sheet(int n, Eigen::VectorXd& y) {
   return sheet_of(n, 0.2 / (n * n), y);
 }
