@@ -64,7 +64,8 @@ def step_text(dt):
 
 def setting(options, is_reference=False):
     """A method and its setting from a run's resolved `integrator_options`: name, step and the
-    keys that make its work per step (substeps, iterations, CG tolerance, DIRK table)."""
+    keys that make its work per step (substeps, iterations, CG tolerance, DIRK table, where
+    bdf2's one solve starts)."""
     name, dt = options["name"], float(options["dt"])
     detail = []
     if name == "xpbd":
@@ -75,6 +76,13 @@ def setting(options, is_reference=False):
     elif name == "implicit-euler":
         detail.append("converged" if options.get("solve") == "converged"
                       else f"CG {float(options['linear_tolerance']):g}")
+    elif name == "bdf2":
+        # A summary without linearise_about is from a build whose one solve started from y_n.
+        if options.get("solve") == "converged":
+            detail.append("converged")
+        else:
+            detail.append("from the predictor" if options.get("linearise_about") == "predictor"
+                          else "from y_n")
     elif name.startswith("arkode-"):
         detail.append(str(options.get("table", "")).removeprefix("ARKODE_"))
         if options.get("nonlinear_solver"):

@@ -63,6 +63,11 @@ class SettingTest(unittest.TestCase):
         self.assertEqual(study_table.setting({"name": "arkode-dirk", "dt": 0.0333333, "table": "ARKODE_SDIRK_2_1_2",
                                               "nonlinear_solver": "line-search"}),
                          "arkode-dirk 1/30 s, SDIRK_2_1_2, line-search")
+        self.assertEqual(study_table.setting({"name": "bdf2", "dt": 0.0333333, "linearise_about": "predictor"}),
+                         "bdf2 1/30 s, from the predictor")
+        self.assertEqual(study_table.setting({"name": "bdf2", "dt": 0.0333333}), "bdf2 1/30 s, from y_n")
+        self.assertEqual(study_table.setting({"name": "bdf2", "dt": 0.0333333, "solve": "converged",
+                                              "linearise_about": "predictor"}), "bdf2 1/30 s, converged")
         self.assertEqual(study_table.setting(REFERENCE, is_reference=True), "reference: leapfrog 0.02 ms")
 
 
