@@ -132,7 +132,7 @@ IntegratorDeclaration bdf2_declaration() {
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<Bdf2>(system, options);
           },
-          declared_keys, true};
+          declared_keys};
 }
 
 }  // namespace drape

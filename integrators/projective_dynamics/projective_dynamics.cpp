@@ -199,9 +199,7 @@ IntegratorDeclaration projective_dynamics_declaration() {
                               true)},
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<ProjectiveDynamics>(system, options);
-          },
-          {},
-          true};
+          }};
 }
 
 }  // namespace drape

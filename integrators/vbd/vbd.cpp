@@ -137,9 +137,7 @@ IntegratorDeclaration vbd_declaration() {
                           "Chebyshev's estimate of the sweeps' spectral radius", true, true)},
       [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
         return std::make_unique<Vbd>(system, options);
-      },
-      {},
-      true};
+      }};
 }
 
 }  // namespace drape

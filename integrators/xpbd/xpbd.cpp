@@ -236,9 +236,7 @@ IntegratorDeclaration xpbd_declaration() {
                               "every constraint from one iterate, relaxed")},
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<Xpbd>(system, options);
-          },
-          {},
-          true};
+          }};
 }
 
 }  // namespace drape
