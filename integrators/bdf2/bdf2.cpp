@@ -13,6 +13,13 @@ constexpr double max_step_ratio = 2.0;
 // (docs/integrators/bdf2.md, "Keys").
 const NamedKeys declared_keys = {false, false, true, true, false, "pcg-multigrid", 1e-3};
 
+// Its own keys (IntegratorDeclaration::keys), built once: the declaration lists them and the
+// constructor reads its settings against them.
+const std::vector<SettingKey> own_keys = {SettingKey::choice(
+    "linearise_about", "predictor", {"predictor", "current"},
+    "solve = linearised: the one Newton iteration starts from the predictor (the extrapolation; "
+    "at a start the body forces' step) or from y_n (Choi and Ko)")};
+
 }  // namespace
 
 Bdf2::Bdf2(ClothSystem& system, const IntegratorOptions& options)
@@ -23,7 +30,7 @@ Bdf2::Bdf2(ClothSystem& system, const IntegratorOptions& options)
                ForceSplit::all, linear_tolerance_of(options, declared_keys),
                options.max_linear_iters),
       m_linearised(system, m_solver),
-      m_from_predictor(options.setting_choice("linearise_about", bdf2_declaration()) == "predictor") {
+      m_from_predictor(options.setting_choice("linearise_about", own_keys) == "predictor") {
   if (uses_line_search(options, declared_keys)) m_converged.emplace(system, m_solver, options);
 }
 
@@ -125,10 +132,7 @@ IntegratorDeclaration bdf2_declaration() {
   return {"bdf2", "implicit", 2, false,
           "Choi-Ko BDF2, linearised (one solve a step, CG or sparse LDLT on the 3N velocity "
           "system) or converged by the line-search Newton",
-          {SettingKey::choice("linearise_about", "predictor", {"predictor", "current"},
-                              "solve = linearised: the one Newton iteration starts from the "
-                              "predictor (the extrapolation; at a start the body forces' step) "
-                              "or from y_n (Choi and Ko)")},
+          own_keys,
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<Bdf2>(system, options);
           },

@@ -71,7 +71,6 @@ struct IntegratorDeclaration {
   IntegratorFactory make = nullptr;
   NamedKeys named_keys = {};  ///< the named keys it reads (not listed by to_json)
 
-  const SettingKey* key(const std::string& name) const;
   nlohmann::json to_json() const;
 };
 
