@@ -55,11 +55,14 @@ double Bdf2::step(double t_stop) {
   } else {
     // IPC's lagged friction frozen at the step's start, as implicit-euler's (docs/friction.md).
     m_system.freeze_friction(positions(), h);
-    if (m_from_predictor)
-      corrected_step(t_next, h, gamma, w);
-    else
-      m_linearised.take(m_t, h, gamma, m_has_history ? &m_history_term : nullptr, m_y,
-                        m_counters);
+    // The one Newton iteration from z_0 with the known term a - z_0 (a = y_n + d): from y_n
+    // (linearise_about = current) it is d, none at a start; from the predictor its offset.
+    const Eigen::VectorXd* known = m_has_history ? &m_history_term : nullptr;
+    if (m_from_predictor) {
+      predict(t_next, h, w);
+      known = &m_known;
+    }
+    m_linearised.take(m_t, h, gamma, known, m_y, m_counters);
     m_system.release_friction();
     m_system.project(t_next, positions(), velocities());
   }
@@ -75,7 +78,7 @@ double Bdf2::step(double t_stop) {
   return accept_fixed_step(t_next);
 }
 
-void Bdf2::corrected_step(double t_next, double h, double gamma, double w) {
+void Bdf2::predict(double t_next, double h, double w) {
   const Eigen::Index n3 = m_y.size() / 2;
   if (m_has_history) {
     // The line through the two last points, y_p = y_n + w (y_n - y_{n-1}); the offset a - y_p
@@ -103,7 +106,6 @@ void Bdf2::corrected_step(double t_next, double h, double gamma, double w) {
     m_y.segment<3>(3 * i) = path.position(t_next);
     m_y.segment<3>(n3 + 3 * i) = path.velocity(t_next);
   }
-  m_linearised.correct(t_next, gamma, m_known, m_y, m_counters);
 }
 
 void Bdf2::converged_step(double t_next, double gamma) {
