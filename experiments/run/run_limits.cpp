@@ -62,17 +62,6 @@ void check_linear_solver_memory(const Scene& scene, const IntegratorOptions& opt
 void check_run_limits(const Scene& scene, const IntegratorOptions& options,
                       const std::string& integrator_field) {
   check_advances(scene, integrator_field + ".dt", options.dt);
-  // The integrators without a friction form would run the scene frictionless: refused instead.
-  const IntegratorDeclaration* declaration = find_integrator(options.name);
-  if (scene.forces.collision.friction > 0.0 && declaration && !declaration->friction) {
-    std::string with_friction;
-    for (const IntegratorDeclaration& other : integrators())
-      if (other.friction) with_friction += (with_friction.empty() ? "" : ", ") + other.name;
-    throw InputError(scene.file, "collision.friction",
-                     "integrator " + options.name +
-                         " has no friction (docs/model.md section 4.12); these have: " +
-                         with_friction);
-  }
   check_linear_solver_memory(scene, options, integrator_field, physical_memory_bytes());
   // A fixed step longer than the run would be cut to the duration: the run would not take the
   // step its scene names.

@@ -375,7 +375,7 @@ std::vector<IntegratorDeclaration> arkode_declarations() {
                      return std::make_unique<ArkodeStepper>(system, *arkode_kind(options.name),
                                                             options);
                    },
-                   a.named_keys, true});
+                   a.named_keys});
   return all;
 }
 

@@ -13,6 +13,13 @@ constexpr double max_step_ratio = 2.0;
 // (docs/integrators/bdf2.md, "Keys").
 const NamedKeys declared_keys = {false, false, true, true, false, "pcg-multigrid", 1e-3};
 
+// Its own keys (IntegratorDeclaration::keys), built once: the declaration lists them and the
+// constructor reads its settings against them.
+const std::vector<SettingKey> own_keys = {SettingKey::choice(
+    "linearise_about", "predictor", {"predictor", "current"},
+    "solve = linearised: the one Newton iteration starts from the predictor (the extrapolation; "
+    "at a start the body forces' step) or from y_n (Choi and Ko)")};
+
 }  // namespace
 
 Bdf2::Bdf2(ClothSystem& system, const IntegratorOptions& options)
@@ -23,7 +30,7 @@ Bdf2::Bdf2(ClothSystem& system, const IntegratorOptions& options)
                ForceSplit::all, linear_tolerance_of(options, declared_keys),
                options.max_linear_iters),
       m_linearised(system, m_solver),
-      m_from_predictor(options.setting_choice("linearise_about", bdf2_declaration()) == "predictor") {
+      m_from_predictor(options.setting_choice("linearise_about", own_keys) == "predictor") {
   if (uses_line_search(options, declared_keys)) m_converged.emplace(system, m_solver, options);
 }
 
@@ -48,11 +55,14 @@ double Bdf2::step(double t_stop) {
   } else {
     // IPC's lagged friction frozen at the step's start, as implicit-euler's (docs/friction.md).
     m_system.freeze_friction(positions(), h);
-    if (m_from_predictor)
-      corrected_step(t_next, h, gamma, w);
-    else
-      m_linearised.take(m_t, h, gamma, m_has_history ? &m_history_term : nullptr, m_y,
-                        m_counters);
+    // The one Newton iteration from z_0 with the known term a - z_0 (a = y_n + d): from y_n
+    // (linearise_about = current) it is d, none at a start; from the predictor its offset.
+    const Eigen::VectorXd* known = m_has_history ? &m_history_term : nullptr;
+    if (m_from_predictor) {
+      predict(t_next, h, w);
+      known = &m_known;
+    }
+    m_linearised.take(m_t, h, gamma, known, m_y, m_counters);
     m_system.release_friction();
     m_system.project(t_next, positions(), velocities());
   }
@@ -68,7 +78,7 @@ double Bdf2::step(double t_stop) {
   return accept_fixed_step(t_next);
 }
 
-void Bdf2::corrected_step(double t_next, double h, double gamma, double w) {
+void Bdf2::predict(double t_next, double h, double w) {
   const Eigen::Index n3 = m_y.size() / 2;
   if (m_has_history) {
     // The line through the two last points, y_p = y_n + w (y_n - y_{n-1}); the offset a - y_p
@@ -96,7 +106,6 @@ void Bdf2::corrected_step(double t_next, double h, double gamma, double w) {
     m_y.segment<3>(3 * i) = path.position(t_next);
     m_y.segment<3>(n3 + 3 * i) = path.velocity(t_next);
   }
-  m_linearised.correct(t_next, gamma, m_known, m_y, m_counters);
 }
 
 void Bdf2::converged_step(double t_next, double gamma) {
@@ -125,14 +134,11 @@ IntegratorDeclaration bdf2_declaration() {
   return {"bdf2", "implicit", 2, false,
           "Choi-Ko BDF2, linearised (one solve a step, CG or sparse LDLT on the 3N velocity "
           "system) or converged by the line-search Newton",
-          {SettingKey::choice("linearise_about", "predictor", {"predictor", "current"},
-                              "solve = linearised: the one Newton iteration starts from the "
-                              "predictor (the extrapolation; at a start the body forces' step) "
-                              "or from y_n (Choi and Ko)")},
+          own_keys,
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<Bdf2>(system, options);
           },
-          declared_keys, true};
+          declared_keys};
 }
 
 }  // namespace drape

@@ -51,9 +51,9 @@ class Bdf2 final : public Integrator {
   /// The step from m_t to t_next solved to convergence (with history: BDF2's equation with
   /// `gamma`; without: backward Euler's), projected.
   void converged_step(double t_next, double gamma);
-  /// The linearised step of size h from the predictor: with history (ratio w) BDF2's from the
-  /// extrapolation, without it implicit Euler's from the body forces' step.
-  void corrected_step(double t_next, double h, double gamma, double w);
+  /// The linearised step's start from the predictor, y = z_0, and m_known = a - z_0: with
+  /// history (ratio w) the extrapolation, without it the body forces' step of size h.
+  void predict(double t_next, double h, double w);
 
   double m_dt;
   long m_max_steps;

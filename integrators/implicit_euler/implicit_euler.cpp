@@ -49,8 +49,7 @@ IntegratorDeclaration implicit_euler_declaration() {
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<ImplicitEuler>(system, options);
           },
-          declared_keys,
-          true};
+          declared_keys};
 }
 
 }  // namespace drape

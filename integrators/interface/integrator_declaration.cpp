@@ -71,12 +71,6 @@ std::string SettingKey::range_text() const {
   return "";
 }
 
-const SettingKey* IntegratorDeclaration::key(const std::string& key_name) const {
-  for (const SettingKey& k : keys)
-    if (k.name == key_name) return &k;
-  return nullptr;
-}
-
 nlohmann::json IntegratorDeclaration::to_json() const {
   nlohmann::json listed = nlohmann::json::array();
   for (const SettingKey& k : keys)

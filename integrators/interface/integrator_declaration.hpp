@@ -70,11 +70,7 @@ struct IntegratorDeclaration {
   std::vector<SettingKey> keys;  ///< its own keys, read into IntegratorOptions::settings
   IntegratorFactory make = nullptr;
   NamedKeys named_keys = {};  ///< the named keys it reads (not listed by to_json)
-  /// applies collision.friction (docs/model.md section 4.12); a scene with friction and an
-  /// integrator without it is refused (run_limits.cpp)
-  bool friction = false;
 
-  const SettingKey* key(const std::string& name) const;
   nlohmann::json to_json() const;
 };
 

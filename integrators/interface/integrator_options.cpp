@@ -6,28 +6,27 @@ namespace drape {
 
 // A key the integrator does not declare is a programming error.
 const nlohmann::json& IntegratorOptions::setting(const std::string& key,
-                                                 const IntegratorDeclaration& declared) const {
+                                                 const std::vector<SettingKey>& declared) const {
   if (const auto it = settings.find(key); it != settings.end()) return *it;
-  const SettingKey* declared_key = declared.key(key);
-  if (!declared_key)
-    throw std::logic_error("integrator '" + declared.name + "' declares no key " + key);
-  return declared_key->default_value;
+  for (const SettingKey& k : declared)
+    if (k.name == key) return k.default_value;
+  throw std::logic_error("integrator '" + name + "' declares no key " + key);
 }
 
 long IntegratorOptions::setting_integer(const std::string& key,
-                                        const IntegratorDeclaration& declared) const {
+                                        const std::vector<SettingKey>& declared) const {
   return setting(key, declared).get<long>();
 }
 double IntegratorOptions::setting_number(const std::string& key,
-                                         const IntegratorDeclaration& declared) const {
+                                         const std::vector<SettingKey>& declared) const {
   return setting(key, declared).get<double>();
 }
 bool IntegratorOptions::setting_flag(const std::string& key,
-                                     const IntegratorDeclaration& declared) const {
+                                     const std::vector<SettingKey>& declared) const {
   return setting(key, declared).get<bool>();
 }
 std::string IntegratorOptions::setting_choice(const std::string& key,
-                                              const IntegratorDeclaration& declared) const {
+                                              const std::vector<SettingKey>& declared) const {
   return setting(key, declared).get<std::string>();
 }
 

@@ -52,13 +52,15 @@ struct IntegratorOptions {
   /// setting_* functions, which fall back to the declared default for options built in code.
   nlohmann::json settings = nlohmann::json::object();
 
-  /// The key's value in `settings`, or the default `declared` gives it.
+  /// The key's value in `settings`, or the default its declaration (`declared`, the
+  /// integrator's own keys, IntegratorDeclaration::keys) gives it.
   const nlohmann::json& setting(const std::string& key,
-                                const IntegratorDeclaration& declared) const;
-  long setting_integer(const std::string& key, const IntegratorDeclaration& declared) const;
-  double setting_number(const std::string& key, const IntegratorDeclaration& declared) const;
-  bool setting_flag(const std::string& key, const IntegratorDeclaration& declared) const;
-  std::string setting_choice(const std::string& key, const IntegratorDeclaration& declared) const;
+                                const std::vector<SettingKey>& declared) const;
+  long setting_integer(const std::string& key, const std::vector<SettingKey>& declared) const;
+  double setting_number(const std::string& key, const std::vector<SettingKey>& declared) const;
+  bool setting_flag(const std::string& key, const std::vector<SettingKey>& declared) const;
+  std::string setting_choice(const std::string& key,
+                             const std::vector<SettingKey>& declared) const;
 };
 
 // The options as an integrator reads them, against the named keys it declares

@@ -2,26 +2,16 @@
 
 namespace drape {
 
-void LinearisedStep::take(double t, double h, double gamma, const Eigen::VectorXd* history,
+void LinearisedStep::take(double t, double h, double gamma, const Eigen::VectorXd* known,
                           Eigen::VectorXd& y, IntegratorCounters& counters) {
-  iterate(t, t + h, gamma, history, y, counters);
-}
-
-void LinearisedStep::correct(double t_next, double gamma, const Eigen::VectorXd& offset,
-                             Eigen::VectorXd& y, IntegratorCounters& counters) {
-  iterate(t_next, t_next, gamma, &offset, y, counters);
-}
-
-void LinearisedStep::iterate(double t, double t_next, double gamma,
-                             const Eigen::VectorXd* offset, Eigen::VectorXd& y,
-                             IntegratorCounters& counters) {
+  const double t_next = t + h;
   const Eigen::Index n3 = y.size() / 2;
   const ConstVecMap x(y.data(), n3), v(y.data() + n3, n3);
   m_residual.resize(y.size());
   m_system.rhs(t, y, m_residual);
   ++counters.rhs_evals;
   m_residual *= gamma;
-  if (offset) m_residual += *offset;
+  if (known) m_residual += *known;
   const ConstraintSet& constraints = m_system.constraints();
   for (const int i : constraints.fixed_particles()) {
     const Trajectory& path = *constraints.trajectory(i);

@@ -19,16 +19,23 @@ constexpr ForceSplit without_collision{true, false, true, false};
 // point does not depend on A, only its speed does.
 constexpr double same_step = 1e-6;
 
+// Its own keys (IntegratorDeclaration::keys), built once: the declaration lists them and the
+// constructor reads its settings against them.
+const std::vector<SettingKey> own_keys = {
+    SettingKey::integer("iterations", 10, 1, 100000, "local/global iterations per step"),
+    SettingKey::boolean("chebyshev", false, "Chebyshev semi-iterative acceleration (Wang 2015)"),
+    SettingKey::number("rho", 0.9, 0.0, 1.0,
+                       "spectral radius estimate of the Chebyshev acceleration", true, true)};
+
 }  // namespace
 
 ProjectiveDynamics::ProjectiveDynamics(ClothSystem& system, const IntegratorOptions& options)
     : Integrator(system),
       m_dt(options.dt),
       m_max_steps(options.max_steps),
-      m_iterations(static_cast<int>(
-          options.setting_integer("iterations", projective_dynamics_declaration()))),
-      m_chebyshev(options.setting_flag("chebyshev", projective_dynamics_declaration())),
-      m_rho(options.setting_number("rho", projective_dynamics_declaration())),
+      m_iterations(static_cast<int>(options.setting_integer("iterations", own_keys))),
+      m_chebyshev(options.setting_flag("chebyshev", own_keys)),
+      m_rho(options.setting_number("rho", own_keys)),
       // The smooth model's normal stiffness reaches 2 k (its energy k/(3 delta) (delta - G)^3
       // continued quadratically inside); the particle and surface models' is k. The weight keeps
       // A above the contact's Hessian, so the iteration does not overshoot a contact.
@@ -190,18 +197,10 @@ IntegratorDeclaration projective_dynamics_declaration() {
   return {"projective-dynamics", "optimisation", 1, false,
           "Projective Dynamics (Liu et al. 2013, Bouaziz et al. 2014): local/global iterations "
           "towards backward Euler, one sparse Cholesky per fixed set",
-          {SettingKey::integer("iterations", 10, 1, 100000,
-                               "local/global iterations per step"),
-           SettingKey::boolean("chebyshev", false,
-                               "Chebyshev semi-iterative acceleration (Wang 2015)"),
-           SettingKey::number("rho", 0.9, 0.0, 1.0,
-                              "spectral radius estimate of the Chebyshev acceleration", true,
-                              true)},
+          own_keys,
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<ProjectiveDynamics>(system, options);
-          },
-          {},
-          true};
+          }};
 }
 
 }  // namespace drape

@@ -170,7 +170,7 @@ nlohmann::json to_json(const IntegratorOptions& o) {
   const IntegratorDeclaration* declaration = find_integrator(o.name);
   if (!declaration) return written;  // options built in code for no registered integrator
   for (const SettingKey& key : declaration->keys)
-    written[key.name] = o.setting(key.name, *declaration);
+    written[key.name] = o.setting(key.name, declaration->keys);
   return written;
 }
 

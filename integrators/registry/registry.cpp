@@ -22,15 +22,11 @@ std::vector<IntegratorDeclaration> explicit_declarations() {
       {"leapfrog", "explicit", 2, false, "the paper's leap-frog (kick-drift-kick form)", {},
        [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
          return std::make_unique<Leapfrog>(system, options.dt);
-       },
-       {},
-       true},
+       }},
       {"symplectic-euler", "explicit", 1, false, "semi-implicit Euler, velocity first", {},
        [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
          return std::make_unique<SymplecticEuler>(system, options.dt);
-       },
-       {},
-       true},
+       }},
   };
 }
 

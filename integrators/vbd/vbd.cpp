@@ -15,15 +15,27 @@ VbdStart start_named(const std::string& name) {
   return VbdStart::inertia;
 }
 
+// Its own keys (IntegratorDeclaration::keys), built once: the declaration lists them and the
+// constructor reads its settings against them.
+const std::vector<SettingKey> own_keys = {
+    SettingKey::integer("iterations", 20, 1, 100000,
+                        "Gauss-Seidel sweeps over the particles per step"),
+    SettingKey::choice("init", "velocity", {"inertia", "previous", "velocity", "adaptive"},
+                       "start of a step's iterations: x_n + h v_n + h^2 g, x_n, x_n + h v_n, "
+                       "or the paper's adaptive acceleration start"),
+    SettingKey::boolean("chebyshev", false, "Chebyshev acceleration of the sweeps (Wang 2015)"),
+    SettingKey::number("rho", 0.95, 0.0, 1.0,
+                       "Chebyshev's estimate of the sweeps' spectral radius", true, true)};
+
 }  // namespace
 
 Vbd::Vbd(ClothSystem& system, const IntegratorOptions& options)
     : Integrator(system),
       m_dt(options.dt),
-      m_iterations(static_cast<int>(options.setting_integer("iterations", vbd_declaration()))),
-      m_start(start_named(options.setting_choice("init", vbd_declaration()))),
-      m_chebyshev(options.setting_flag("chebyshev", vbd_declaration())),
-      m_rho(options.setting_number("rho", vbd_declaration())),
+      m_iterations(static_cast<int>(options.setting_integer("iterations", own_keys))),
+      m_start(start_named(options.setting_choice("init", own_keys))),
+      m_chebyshev(options.setting_flag("chebyshev", own_keys)),
+      m_rho(options.setting_number("rho", own_keys)),
       m_descent(system) {}
 
 void Vbd::reset(double t, const Eigen::VectorXd& y) {
@@ -127,19 +139,10 @@ IntegratorDeclaration vbd_declaration() {
       false,
       "Vertex Block Descent (Chen et al. 2024): Gauss-Seidel 3x3 Newton steps on backward "
       "Euler's incremental potential",
-      {SettingKey::integer("iterations", 20, 1, 100000,
-                           "Gauss-Seidel sweeps over the particles per step"),
-       SettingKey::choice("init", "velocity", {"inertia", "previous", "velocity", "adaptive"},
-                          "start of a step's iterations: x_n + h v_n + h^2 g, x_n, "
-                          "x_n + h v_n, or the paper's adaptive acceleration start"),
-       SettingKey::boolean("chebyshev", false, "Chebyshev acceleration of the sweeps (Wang 2015)"),
-       SettingKey::number("rho", 0.95, 0.0, 1.0,
-                          "Chebyshev's estimate of the sweeps' spectral radius", true, true)},
+      own_keys,
       [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
         return std::make_unique<Vbd>(system, options);
-      },
-      {},
-      true};
+      }};
 }
 
 }  // namespace drape

@@ -11,13 +11,25 @@
 
 namespace drape {
 
+namespace {
+
+// Its own keys (IntegratorDeclaration::keys), built once: the declaration lists them and the
+// constructor reads its settings against them.
+const std::vector<SettingKey> own_keys = {
+    SettingKey::integer("substeps", 80, 1, 10000, "substeps per dt"),
+    SettingKey::integer("iterations", 1, 1, 10000, "constraint sweeps per substep"),
+    SettingKey::choice("sweep", "gauss-seidel", {"gauss-seidel", "jacobi"},
+                       "gauss-seidel: springs in colour order, then contacts; jacobi: every "
+                       "constraint from one iterate, relaxed")};
+
+}  // namespace
+
 Xpbd::Xpbd(ClothSystem& system, const IntegratorOptions& options)
     : Integrator(system),
       m_dt(options.dt),
-      m_substeps(static_cast<int>(options.setting_integer("substeps", xpbd_declaration()))),
-      m_iterations(
-          static_cast<int>(options.setting_integer("iterations", xpbd_declaration()))),
-      m_jacobi(options.setting_choice("sweep", xpbd_declaration()) == "jacobi") {
+      m_substeps(static_cast<int>(options.setting_integer("substeps", own_keys))),
+      m_iterations(static_cast<int>(options.setting_integer("iterations", own_keys))),
+      m_jacobi(options.setting_choice("sweep", own_keys) == "jacobi") {
   const SpringSet& springs = system.cloth().springs;
   const int n = system.num_particles();
   const Eigen::Index count = springs.size();
@@ -229,16 +241,10 @@ IntegratorDeclaration xpbd_declaration() {
           false,
           "XPBD with small steps (Macklin et al. 2016, 2019): springs and contacts as compliant "
           "constraints",
-          {SettingKey::integer("substeps", 80, 1, 10000, "substeps per dt"),
-           SettingKey::integer("iterations", 1, 1, 10000, "constraint sweeps per substep"),
-           SettingKey::choice("sweep", "gauss-seidel", {"gauss-seidel", "jacobi"},
-                              "gauss-seidel: springs in colour order, then contacts; jacobi: "
-                              "every constraint from one iterate, relaxed")},
+          own_keys,
           [](ClothSystem& system, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
             return std::make_unique<Xpbd>(system, options);
-          },
-          {},
-          true};
+          }};
 }
 
 }  // namespace drape

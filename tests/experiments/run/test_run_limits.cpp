@@ -6,7 +6,6 @@
 
 #include "experiments/run/scene_simulation.hpp"
 #include "integrators/registry/options_reader.hpp"
-#include "integrators/registry/registry.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace drape {
@@ -88,23 +87,6 @@ TEST(RunLimits, AFixedStepLongerThanTheRunIsAnInputError) {
             "step of the duration, not dt");
   EXPECT_EQ(error_for(R"({"name": "implicit-euler", "dt": 0.1})", 0.1), "no error");
   EXPECT_EQ(error_for(R"({"name": "arkode-erk", "adaptive": true, "dt": 1.0})", 0.1), "no error");
-}
-
-// docs/model.md section 4.12: an integrator with no friction form would run the scene
-// frictionless and is refused; every registered integrator has one (docs/friction.md's table),
-// so a scene with friction runs with any of them.
-TEST(RunLimits, EveryIntegratorTakesFriction) {
-  for (const IntegratorDeclaration& declaration : integrators()) {
-    EXPECT_TRUE(declaration.friction) << declaration.name;
-    Scene scene = scene_with(R"({"name": ")" + declaration.name + R"(", "dt": 0.01})", 0.1);
-    scene.forces.collision.friction = 0.3;
-    EXPECT_EQ(testing::input_error_message([&] {
-                check_run_limits(scene, read_integrator_options(scene.integrator, scene.file,
-                                                                "integrator"));
-              }),
-              "no error")
-        << declaration.name;
-  }
 }
 
 TEST(RunLimits, SceneSimulationChecksBeforeBuilding) {

@@ -46,10 +46,9 @@ TEST(IntegratorOptions, NewtonIterationBoundDependsOnTheSolver) {
 }
 
 TEST(IntegratorOptions, SettingsFallBackToTheDeclarationAndRefuseUndeclaredKeys) {
-  IntegratorDeclaration declared;
-  declared.name = "example";
-  declared.keys = {SettingKey::integer("iterations", 10, 1, 100, "sweeps"),
-                   SettingKey::choice("sweep", "jacobi", {"jacobi", "gauss-seidel"}, "order")};
+  const std::vector<SettingKey> declared = {
+      SettingKey::integer("iterations", 10, 1, 100, "sweeps"),
+      SettingKey::choice("sweep", "jacobi", {"jacobi", "gauss-seidel"}, "order")};
   IntegratorOptions o;
   o.settings = {{"sweep", "gauss-seidel"}};
   EXPECT_EQ(o.setting_integer("iterations", declared), 10);

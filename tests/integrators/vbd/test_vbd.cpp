@@ -177,9 +177,9 @@ TEST(Vbd, BadKeysAreInputErrorsNamingTheField) {
   const IntegratorOptions o =
       read_integrator_options({{"name", "vbd"}, {"dt", frame}, {"init", "adaptive"}, {"rho", 0.5}},
                               "scene.json", "integrator");
-  EXPECT_EQ(o.setting_choice("init", vbd_declaration()), "adaptive");
-  EXPECT_EQ(o.setting_number("rho", vbd_declaration()), 0.5);
-  EXPECT_EQ(o.setting_integer("iterations", vbd_declaration()), 20);
+  EXPECT_EQ(o.setting_choice("init", vbd_declaration().keys), "adaptive");
+  EXPECT_EQ(o.setting_number("rho", vbd_declaration().keys), 0.5);
+  EXPECT_EQ(o.setting_integer("iterations", vbd_declaration().keys), 20);
   EXPECT_EQ(find_integrator("vbd")->family, "optimisation");
 }
 

@@ -223,9 +223,9 @@ TEST(Xpbd, BadKeysNameTheField) {
             "no error");
   const IntegratorOptions defaults =
       read_integrator_options({{"name", "xpbd"}, {"dt", 0.01}}, "scene.json", "integrator");
-  EXPECT_EQ(defaults.setting_integer("substeps", xpbd_declaration()), 80);
-  EXPECT_EQ(defaults.setting_integer("iterations", xpbd_declaration()), 1);
-  EXPECT_EQ(defaults.setting_choice("sweep", xpbd_declaration()), "gauss-seidel");
+  EXPECT_EQ(defaults.setting_integer("substeps", xpbd_declaration().keys), 80);
+  EXPECT_EQ(defaults.setting_integer("iterations", xpbd_declaration().keys), 1);
+  EXPECT_EQ(defaults.setting_choice("sweep", xpbd_declaration().keys), "gauss-seidel");
   EXPECT_EQ(find_integrator("xpbd")->family, "position-based");
 }
 
