@@ -18,7 +18,7 @@ Xpbd::Xpbd(ClothSystem& system, const IntegratorOptions& options)
       m_iterations(
           static_cast<int>(options.setting_integer("iterations", xpbd_declaration()))),
       m_jacobi(options.setting_choice("sweep", xpbd_declaration()) == "jacobi") {
-  const SpringSet& springs = system.cloth().springs;
+  const SpringList& springs = system.cloth().springs;
   const int n = system.num_particles();
   const Eigen::Index count = springs.size();
   m_first.resize(count);
