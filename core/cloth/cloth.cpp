@@ -1,7 +1,5 @@
 #include "core/cloth/cloth.hpp"
 
-#include <cstdlib>
-
 namespace drape {
 
 namespace {
@@ -24,43 +22,6 @@ std::vector<SpringStencil> spring_stencils(const ClothParams& params) {
     stencils.push_back(s);
   }
   return stencils;
-}
-
-// Lists the stencils' springs in colour classes, each a matching of the grid: no two springs of
-// a class share a particle. Loops that scatter per spring (Jacobian products, assembly) then have
-// no read-after-write chains between neighbouring springs, and each class sweeps the grid in
-// memory order.
-SpringSet list_springs(const std::vector<SpringStencil>& stencils, int rows, int cols) {
-  std::vector<int> first, second;
-  std::vector<const SpringStencil*> of;
-  for (const SpringStencil& s : stencils) {
-    // Springs of one offset sharing a particle start one stride apart along its major axis;
-    // alternating blocks of `stride` starts never touch.
-    const int stride = s.dr != 0 ? s.dr : std::abs(s.dc);
-    for (int colour = 0; colour < 2; ++colour)
-      for (int r = 0; r + s.dr < rows; ++r)
-        for (int c = s.first_col(); c < s.end_col(cols); ++c) {
-          const int major = s.dr != 0 ? r : c;
-          if ((major / stride) % 2 != colour) continue;
-          first.push_back(r * cols + c);
-          second.push_back((r + s.dr) * cols + c + s.dc);
-          of.push_back(&s);
-        }
-  }
-  const auto n = static_cast<Eigen::Index>(first.size());
-  SpringSet set;
-  set.first = Eigen::Map<Eigen::ArrayXi>(first.data(), n);
-  set.second = Eigen::Map<Eigen::ArrayXi>(second.data(), n);
-  set.rest.resize(n);
-  set.stiffness.resize(n);
-  set.family.reserve(of.size());
-  for (Eigen::Index e = 0; e < n; ++e) {
-    const SpringStencil& s = *of[static_cast<std::size_t>(e)];
-    set.rest[e] = s.rest;
-    set.stiffness[e] = s.stiffness;
-    set.family.push_back(s.family);
-  }
-  return set;
 }
 
 }  // namespace

@@ -10,13 +10,13 @@ namespace spring_kernel {
 
 static_assert(kernel_degenerate_length == degenerate_length);
 
-void add_sse2(const Stencil& stencil, double c, const Arrays& arrays) {
-  add_stencil<__m128d>(stencil, c, arrays);
+void add_sse2(const SpringStencil& stencil, int rows, int cols, double c, const Arrays& arrays) {
+  add_stencil<__m128d>(stencil, rows, cols, c, arrays);
 }
 
-void store_sse2(const Stencil& stencil, double c, const Arrays& arrays,
+void store_sse2(const SpringStencil& stencil, int rows, int cols, double c, const Arrays& arrays,
                 double* const spring_force[3], int row_begin, int row_end) {
-  store_stencil<__m128d>(stencil, c, arrays, spring_force, row_begin, row_end);
+  store_stencil<__m128d>(stencil, rows, cols, c, arrays, spring_force, row_begin, row_end);
 }
 
 bool has_avx() {
@@ -26,19 +26,6 @@ bool has_avx() {
 }
 
 }  // namespace spring_kernel
-
-spring_kernel::Stencil kernel_stencil(const SpringStencil& stencil, int rows, int cols) {
-  spring_kernel::Stencil k;
-  k.along_row = stencil.dr == 0;
-  k.offset = static_cast<long>(stencil.dr) * cols + stencil.dc;
-  k.first = stencil.first_col();
-  k.count = stencil.end_col(cols) - stencil.first_col();
-  k.rows = rows - stencil.dr;
-  k.cols = cols;
-  k.stiffness = stencil.stiffness;
-  k.rest = stencil.rest;
-  return k;
-}
 
 spring_kernel::Arrays kernel_arrays(ConstComponents x, ConstComponents v, Components force,
                                     Components row_force) {
@@ -70,14 +57,12 @@ Components StaggeredColumns::group(Eigen::Index k) {
 GridSpringForces::GridSpringForces(const Cloth& cloth)
     : m_rows(cloth.params.rows),
       m_cols(cloth.params.cols),
+      m_stencils(cloth.stencils),
       m_columns(cloth.size(), 3),
       m_row_force(cloth.params.cols, 3),
       m_spring_columns(0, 0),
       m_add(spring_kernel::has_avx() ? spring_kernel::add_avx : spring_kernel::add_sse2),
-      m_store(spring_kernel::has_avx() ? spring_kernel::store_avx : spring_kernel::store_sse2) {
-  for (const SpringStencil& s : cloth.stencils)
-    m_stencils.push_back(kernel_stencil(s, cloth.params.rows, cloth.params.cols));
-}
+      m_store(spring_kernel::has_avx() ? spring_kernel::store_avx : spring_kernel::store_sse2) {}
 
 ConstComponents GridSpringForces::evaluate(ConstVecRef x, ConstVecRef v, double c) {
   Components xs = m_columns.group(0), vs = m_columns.group(1), force = m_columns.group(2);
@@ -94,7 +79,7 @@ ConstComponents GridSpringForces::evaluate(ConstVecRef x, ConstVecRef v, double 
   to_components(x, xs);
   if (c != 0.0) to_components(v, vs);
   force.setZero();
-  for (const spring_kernel::Stencil& s : m_stencils) m_add(s, c, arrays);
+  for (const SpringStencil& s : m_stencils) m_add(s, m_rows, m_cols, c, arrays);
   return force;
 }
 
@@ -106,7 +91,7 @@ void GridSpringForces::evaluate_threaded(double c, const spring_kernel::Arrays& 
     for (Eigen::Index k = 0; k < stencils; ++k) {
       Components out = m_spring_columns.group(k);
       double* const columns[3] = {&out(0, 0), &out(0, 1), &out(0, 2)};
-      m_store(m_stencils[static_cast<std::size_t>(k)], c, arrays, columns,
+      m_store(m_stencils[static_cast<std::size_t>(k)], m_rows, m_cols, c, arrays, columns,
               static_cast<int>(begin), static_cast<int>(end));
     }
   });
@@ -121,27 +106,29 @@ void GridSpringForces::gather_rows(int row_begin, int row_end, const spring_kern
     const long begin = static_cast<long>(row_begin) * m_cols, end = static_cast<long>(row_end) * m_cols;
     std::fill(force + begin, force + end, 0.0);
     for (std::size_t k = 0; k < m_stencils.size(); ++k) {
-      const spring_kernel::Stencil& s = m_stencils[k];
+      const SpringStencil& s = m_stencils[k];
+      const long offset = s.offset(m_cols), first = s.first_col(), count = s.count(m_cols);
+      const int end_row = s.end_row(m_rows);
       const double* spring = &m_spring_columns.group(static_cast<Eigen::Index>(k))(0, m);
       for (int r = row_begin; r < row_end; ++r) {
-        const long row = static_cast<long>(r) * s.cols;
-        const bool starts = r < s.rows;
-        const int from = r - (m_rows - s.rows);  // the row whose springs end in row r
-        const bool ends = from >= 0 && from < s.rows;
+        const long row = static_cast<long>(r) * m_cols;
+        const bool starts = r < end_row;
+        const int from = r - s.dr;  // the row whose springs end in row r
+        const bool ends = from >= 0 && from < end_row;
         // Spring e of a row starts at row + first + e and ends offset further on.
-        const long i = row + s.first;
-        if (s.along_row) {
+        const long i = row + first;
+        if (s.along_row()) {
           if (!starts) continue;
-          for (long e = 0; e < s.count; ++e) force[i + e] += spring[i + e];
-          for (long e = 0; e < s.count; ++e) force[i + s.offset + e] -= spring[i + e];
+          for (long e = 0; e < count; ++e) force[i + e] += spring[i + e];
+          for (long e = 0; e < count; ++e) force[i + offset + e] -= spring[i + e];
           continue;
         }
         if (ends) {
-          const long source = static_cast<long>(from) * s.cols + s.first;
-          for (long e = 0; e < s.count; ++e) force[source + s.offset + e] -= spring[source + e];
+          const long source = static_cast<long>(from) * m_cols + first;
+          for (long e = 0; e < count; ++e) force[source + offset + e] -= spring[source + e];
         }
         if (starts)
-          for (long e = 0; e < s.count; ++e) force[i + e] += spring[i + e];
+          for (long e = 0; e < count; ++e) force[i + e] += spring[i + e];
       }
     }
   }

@@ -41,8 +41,6 @@ class StaggeredColumns {
   Eigen::ArrayXXd m_buffer;
 };
 
-/// The kernel's description of a stencil's springs on a rows x cols grid.
-spring_kernel::Stencil kernel_stencil(const SpringStencil& stencil, int rows, int cols);
 /// The kernel's view of N x 3 arrays (`row_force`: cols x 3).
 spring_kernel::Arrays kernel_arrays(ConstComponents x, ConstComponents v, Components force,
                                     Components row_force);
@@ -63,18 +61,19 @@ class GridSpringForces {
   ConstComponents evaluate(ConstVecRef x, ConstVecRef v, double c);
 
  private:
-  using Store = void (*)(const spring_kernel::Stencil&, double, const spring_kernel::Arrays&,
+  using Add = void (*)(const SpringStencil&, int, int, double, const spring_kernel::Arrays&);
+  using Store = void (*)(const SpringStencil&, int, int, double, const spring_kernel::Arrays&,
                          double* const[3], int, int);
   void evaluate_threaded(double c, const spring_kernel::Arrays& arrays);
   // Grid rows [row_begin, row_end) of `force`: each particle's springs from m_spring_columns.
   void gather_rows(int row_begin, int row_end, const spring_kernel::Arrays& arrays);
 
   int m_rows, m_cols;
-  std::vector<spring_kernel::Stencil> m_stencils;
+  std::vector<SpringStencil> m_stencils;
   StaggeredColumns m_columns;   // x, v, force
   Eigen::ArrayX3d m_row_force;  // one row of springs, for stencils along rows
   StaggeredColumns m_spring_columns;  // threaded: each stencil's spring forces; empty until then
-  void (*m_add)(const spring_kernel::Stencil&, double, const spring_kernel::Arrays&);
+  Add m_add;
   Store m_store;
 };
 

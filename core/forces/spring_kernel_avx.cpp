@@ -5,13 +5,13 @@
 
 namespace drape::spring_kernel {
 
-void add_avx(const Stencil& stencil, double c, const Arrays& arrays) {
-  add_stencil<__m256d>(stencil, c, arrays);
+void add_avx(const SpringStencil& stencil, int rows, int cols, double c, const Arrays& arrays) {
+  add_stencil<__m256d>(stencil, rows, cols, c, arrays);
 }
 
-void store_avx(const Stencil& stencil, double c, const Arrays& arrays,
+void store_avx(const SpringStencil& stencil, int rows, int cols, double c, const Arrays& arrays,
                double* const spring_force[3], int row_begin, int row_end) {
-  store_stencil<__m256d>(stencil, c, arrays, spring_force, row_begin, row_end);
+  store_stencil<__m256d>(stencil, rows, cols, c, arrays, spring_force, row_begin, row_end);
 }
 
 }  // namespace drape::spring_kernel

@@ -61,14 +61,15 @@ inline void add_springs(const Arrays& a, double k, double rest, double c, long i
   }
 }
 
-// The springs e = 0 .. s.count - 1 of the run from (i, j), in packets and then one by one.
+// The springs e = 0 .. count - 1 of the run from (i, j), in packets and then one by one.
 template <class V, bool damped, bool buffered>
-inline void add_run(const Stencil& s, double c, const Arrays& a, long i, long j) {
+inline void add_run(const SpringStencil& s, long count, double c, const Arrays& a, long i,
+                    long j) {
   constexpr long width = sizeof(V) / sizeof(double);
   long e = 0;
-  for (; e + width <= s.count; e += width)
+  for (; e + width <= count; e += width)
     add_springs<V, damped, buffered>(a, s.stiffness, s.rest, c, i + e, j + e, e);
-  for (; e < s.count; ++e)
+  for (; e < count; ++e)
     add_springs<double, damped, buffered>(a, s.stiffness, s.rest, c, i + e, j + e, e);
 }
 
@@ -76,14 +77,16 @@ inline void add_run(const Stencil& s, double c, const Arrays& a, long i, long j)
 // would store and reload half-overlapping packets, which stalls store forwarding, so their
 // forces are added after the row.
 template <class V, bool damped, bool buffered>
-inline void add_rows(const Stencil& s, double c, const Arrays& a) {
-  for (int r = 0; r < s.rows; ++r) {
-    const long i = static_cast<long>(r) * s.cols + s.first, j = i + s.offset;
-    add_run<V, damped, buffered>(s, c, a, i, j);
+inline void add_rows(const SpringStencil& s, int rows, int cols, double c, const Arrays& a) {
+  const long offset = s.offset(cols), first = s.first_col(), count = s.count(cols);
+  const int end_row = s.end_row(rows);
+  for (int r = 0; r < end_row; ++r) {
+    const long i = static_cast<long>(r) * cols + first, j = i + offset;
+    add_run<V, damped, buffered>(s, count, c, a, i, j);
     if constexpr (buffered) {
       for (int m = 0; m < 3; ++m) {
-        for (long e = 0; e < s.count; ++e) a.force[m][i + e] += a.row_force[m][e];
-        for (long e = 0; e < s.count; ++e) a.force[m][j + e] -= a.row_force[m][e];
+        for (long e = 0; e < count; ++e) a.force[m][i + e] += a.row_force[m][e];
+        for (long e = 0; e < count; ++e) a.force[m][j + e] -= a.row_force[m][e];
       }
     }
   }
@@ -91,31 +94,35 @@ inline void add_rows(const Stencil& s, double c, const Arrays& a) {
 
 // The force on i of every spring of rows [row_begin, row_end) into spring_force at i.
 template <class V, bool damped>
-inline void store_rows(const Stencil& s, double c, const Arrays& a, double* const spring_force[3],
-                       int row_begin, int row_end) {
+inline void store_rows(const SpringStencil& s, int rows, int cols, double c, const Arrays& a,
+                       double* const spring_force[3], int row_begin, int row_end) {
+  const long offset = s.offset(cols), first = s.first_col(), count = s.count(cols);
+  const int end_row = s.end_row(rows);
   Arrays row = a;
-  for (int r = row_begin; r < row_end && r < s.rows; ++r) {
-    const long i = static_cast<long>(r) * s.cols + s.first;
+  for (int r = row_begin; r < row_end && r < end_row; ++r) {
+    const long i = static_cast<long>(r) * cols + first;
     for (int m = 0; m < 3; ++m) row.row_force[m] = spring_force[m] + i;
-    add_run<V, damped, true>(s, c, row, i, i + s.offset);
+    add_run<V, damped, true>(s, count, c, row, i, i + offset);
   }
 }
 
 template <class V>
-inline void store_stencil(const Stencil& s, double c, const Arrays& a,
+inline void store_stencil(const SpringStencil& s, int rows, int cols, double c, const Arrays& a,
                           double* const spring_force[3], int row_begin, int row_end) {
   if (c != 0.0)
-    store_rows<V, true>(s, c, a, spring_force, row_begin, row_end);
+    store_rows<V, true>(s, rows, cols, c, a, spring_force, row_begin, row_end);
   else
-    store_rows<V, false>(s, c, a, spring_force, row_begin, row_end);
+    store_rows<V, false>(s, rows, cols, c, a, spring_force, row_begin, row_end);
 }
 
 template <class V>
-inline void add_stencil(const Stencil& s, double c, const Arrays& a) {
+inline void add_stencil(const SpringStencil& s, int rows, int cols, double c, const Arrays& a) {
   if (c != 0.0)
-    s.along_row ? add_rows<V, true, true>(s, c, a) : add_rows<V, true, false>(s, c, a);
+    s.along_row() ? add_rows<V, true, true>(s, rows, cols, c, a)
+                  : add_rows<V, true, false>(s, rows, cols, c, a);
   else
-    s.along_row ? add_rows<V, false, true>(s, c, a) : add_rows<V, false, false>(s, c, a);
+    s.along_row() ? add_rows<V, false, true>(s, rows, cols, c, a)
+                  : add_rows<V, false, false>(s, rows, cols, c, a);
 }
 
 }  // namespace

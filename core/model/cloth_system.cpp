@@ -138,7 +138,7 @@ EnergyBreakdown ClothSystem::energy(ConstVecRef x, ConstVecRef v) const {
   EnergyBreakdown e;
   const double m = particle_mass();
   e.kinetic = 0.5 * m * v.squaredNorm();
-  const SpringSet& springs = m_cloth.springs;
+  const SpringList& springs = m_cloth.springs;
   for (Eigen::Index s = 0; s < springs.size(); ++s)
     e.spring += spring_energy(particle(x, springs.second[s]) - particle(x, springs.first[s]),
                               springs.stiffness[s], springs.rest[s]);
@@ -152,7 +152,7 @@ EnergyBreakdown ClothSystem::energy(ConstVecRef x, ConstVecRef v) const {
 
 void ClothSystem::spring_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite,
                                         Eigen::Index e, Mat3& jx, Mat3& jv) const {
-  const SpringSet& springs = m_cloth.springs;
+  const SpringList& springs = m_cloth.springs;
   const double c_spring = m_cloth.params.damping_spring;
   const int i = springs.first[e], j = springs.second[e];
   const Vec3 d = particle(x, j) - particle(x, i);
@@ -195,7 +195,7 @@ Mat3 ClothSystem::particle_velocity_jacobian(ConstVecRef x, ConstVecRef v, Force
 template <class Visit>
 void ClothSystem::for_each_jacobian_block(ConstVecRef x, ConstVecRef v, bool definite,
                                           ForceSplit split, Visit&& visit) const {
-  const SpringSet& springs = m_cloth.springs;
+  const SpringList& springs = m_cloth.springs;
   Mat3 jx, jv;
   for (Eigen::Index e = 0; split.with_springs && e < springs.size(); ++e) {
     spring_jacobian_block(x, v, definite, e, jx, jv);

@@ -64,7 +64,7 @@ BENCHMARK(BM_LeapfrogStep)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMicrose
 void BM_PlainSpringLoop(benchmark::State& state) {
   Eigen::VectorXd y;
   auto system = draped_cloth(static_cast<int>(state.range(0)), y, false);
-  const SpringSet& springs = system->cloth().springs;
+  const SpringList& springs = system->cloth().springs;
   const Eigen::Index n3 = 3 * system->num_particles();
   Eigen::VectorXd x = y.head(n3), v = Eigen::VectorXd::Zero(n3), f(n3);
   const double dt = 1e-4, dt_over_m = dt / system->particle_mass();
@@ -109,12 +109,11 @@ void BM_SpringKernel(benchmark::State& state) {
   Eigen::ArrayX3d row(cloth.params.cols, 3);
   const spring_kernel::Arrays arrays = kernel_arrays(x, v, force, row);
   const auto add = avx ? spring_kernel::add_avx : spring_kernel::add_sse2;
-  std::vector<spring_kernel::Stencil> stencils;
-  for (const SpringStencil& s : cloth.stencils)
-    stencils.push_back(kernel_stencil(s, cloth.params.rows, cloth.params.cols));
+  const int rows = cloth.params.rows, cols = cloth.params.cols;
   for (auto _ : state) {
     force.setZero();
-    for (const spring_kernel::Stencil& s : stencils) add(s, cloth.params.damping_spring, arrays);
+    for (const SpringStencil& s : cloth.stencils)
+      add(s, rows, cols, cloth.params.damping_spring, arrays);
     benchmark::DoNotOptimize(force.data());
   }
   report_per_particle(state, static_cast<int>(n));

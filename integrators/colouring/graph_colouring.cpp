@@ -30,7 +30,7 @@ Colouring colour_greedily(int n, Neighbours&& neighbours) {
 }
 
 // Springs incident to each particle, in spring order.
-std::vector<std::vector<int>> incident_springs(int num_particles, const SpringSet& springs) {
+std::vector<std::vector<int>> incident_springs(int num_particles, const SpringList& springs) {
   std::vector<std::vector<int>> incident(static_cast<std::size_t>(num_particles));
   for (Eigen::Index e = 0; e < springs.size(); ++e) {
     incident[static_cast<std::size_t>(springs.first[e])].push_back(static_cast<int>(e));
@@ -41,7 +41,7 @@ std::vector<std::vector<int>> incident_springs(int num_particles, const SpringSe
 
 }  // namespace
 
-Colouring colour_particles(int num_particles, const SpringSet& springs) {
+Colouring colour_particles(int num_particles, const SpringList& springs) {
   const auto incident = incident_springs(num_particles, springs);
   return colour_greedily(num_particles, [&](int i, auto&& visit) {
     for (int e : incident[static_cast<std::size_t>(i)])
@@ -49,7 +49,7 @@ Colouring colour_particles(int num_particles, const SpringSet& springs) {
   });
 }
 
-Colouring colour_springs(int num_particles, const SpringSet& springs) {
+Colouring colour_springs(int num_particles, const SpringList& springs) {
   const auto incident = incident_springs(num_particles, springs);
   return colour_greedily(static_cast<int>(springs.size()), [&](int e, auto&& visit) {
     for (int end : {springs.first[e], springs.second[e]})

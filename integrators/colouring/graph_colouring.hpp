@@ -5,7 +5,7 @@
 // the colouring, and every sweep over it, is deterministic.
 #include <vector>
 
-#include "core/cloth/cloth.hpp"
+#include "core/cloth/spring_list.hpp"
 
 namespace drape {
 
@@ -13,8 +13,8 @@ namespace drape {
 using Colouring = std::vector<std::vector<int>>;
 
 /// Particles coloured so that no spring joins two particles of one colour.
-Colouring colour_particles(int num_particles, const SpringSet& springs);
+Colouring colour_particles(int num_particles, const SpringList& springs);
 /// Springs coloured so that no two springs of one colour share a particle.
-Colouring colour_springs(int num_particles, const SpringSet& springs);
+Colouring colour_springs(int num_particles, const SpringList& springs);
 
 }  // namespace drape

@@ -22,7 +22,7 @@ namespace {
 
 // Each particle's spring neighbours, ascending, without duplicates (two springs may join the
 // same pair) and without the particle itself: S's off-diagonal block pattern.
-std::vector<std::vector<int>> spring_neighbours(const SpringSet& springs, int n) {
+std::vector<std::vector<int>> spring_neighbours(const SpringList& springs, int n) {
   std::vector<std::vector<int>> rows(static_cast<std::size_t>(n));
   for (Eigen::Index e = 0; e < springs.size(); ++e) {
     rows[static_cast<std::size_t>(springs.second[e])].push_back(springs.first[e]);
@@ -108,7 +108,7 @@ void ReducedNewtonSolver::assemble_blocks(FinishRow finish_row) {
 std::vector<std::vector<int>> ReducedNewtonSolver::build_gather() {
   // The pattern depends on the springs alone, so it serves every later step, whatever the fixed
   // set (fixed particles' couplings are written as zeros).
-  const SpringSet& springs = m_system.cloth().springs;
+  const SpringList& springs = m_system.cloth().springs;
   std::vector<std::vector<int>> neighbours =
       spring_neighbours(springs, m_system.num_particles());
   m_matrix.set_pattern(neighbours);
@@ -230,7 +230,7 @@ void ReducedNewtonSolver::jacobian_times(ConstVecRef r_x, ConstVecRef r_v,
                                          Eigen::VectorXd& out) const {
   // D's columns enter only at fixed particles (D r_v|fixed): D's blocks are read there alone,
   // half of the spring blocks this pass would otherwise stream.
-  const SpringSet& springs = m_system.cloth().springs;
+  const SpringList& springs = m_system.cloth().springs;
   const auto& fixed = m_system.constraints().mask();
   out.resize(r_x.size());
   for (std::size_t i = 0; i < m_jacobian.particle_x.size(); ++i) {

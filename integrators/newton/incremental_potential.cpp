@@ -28,7 +28,7 @@ void IncrementalPotential::begin_stage(double t, double gamma, ConstVecRef a, Ve
 }
 
 void IncrementalPotential::freeze_damping(ConstVecRef z) {
-  const SpringSet& springs = m_system.cloth().springs;
+  const SpringList& springs = m_system.cloth().springs;
   const auto x = z.head(z.size() / 2);
   m_directions.resize(static_cast<std::size_t>(springs.size()));
   parallel_for(springs.size(), threaded_particles_from,
@@ -105,7 +105,7 @@ double IncrementalPotential::value(ConstVecRef z, double& magnitude) const {
   if (m_split.with_springs) {
     e += u.spring;
     magnitude += u.spring;
-    const SpringSet& springs = m_system.cloth().springs;
+    const SpringList& springs = m_system.cloth().springs;
     const double c = m_system.cloth().params.damping_spring;
     double dissipation = 0.0;
     if (c > 0.0)

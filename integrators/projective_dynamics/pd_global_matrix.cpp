@@ -5,7 +5,7 @@
 
 namespace drape {
 
-PdGlobalMatrix::PdGlobalMatrix(const SpringSet& springs, double contact_weight)
+PdGlobalMatrix::PdGlobalMatrix(const SpringList& springs, double contact_weight)
     : m_springs(springs), m_contact_weight(contact_weight) {}
 
 void PdGlobalMatrix::factor(const std::vector<unsigned char>& fixed,

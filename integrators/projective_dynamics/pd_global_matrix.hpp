@@ -12,7 +12,7 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
-#include "core/cloth/cloth.hpp"
+#include "core/cloth/spring_list.hpp"
 
 namespace drape {
 
@@ -20,7 +20,7 @@ namespace drape {
 class PdGlobalMatrix {
  public:
   /// A of `springs` with contact weight w = `contact_weight`.
-  PdGlobalMatrix(const SpringSet& springs, double contact_weight);
+  PdGlobalMatrix(const SpringList& springs, double contact_weight);
 
   /// Numbers the free particles of `fixed` (1 = fixed), assembles A with `diagonal`
   /// = m/h^2 + c_air/h and spring weights k_e + `spring_extra` (c_s/h), and factors it
@@ -42,7 +42,7 @@ class PdGlobalMatrix {
   int index(int i) const { return m_index[static_cast<std::size_t>(i)]; }
   int particle_of(int r) const { return m_particles[static_cast<std::size_t>(r)]; }
 
-  const SpringSet& m_springs;
+  const SpringList& m_springs;
   double m_contact_weight;
   std::vector<int> m_index, m_particles;  // row of a particle (-1: fixed), particle of a row
   std::vector<int> m_slot_particle;

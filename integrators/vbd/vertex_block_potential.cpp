@@ -13,7 +13,7 @@ Vec3 at(const double* x, int i) { return Vec3(x[3 * i], x[3 * i + 1], x[3 * i + 
 }  // namespace
 
 VertexBlockPotential::VertexBlockPotential(const ClothSystem& system) : m_system(system) {
-  const SpringSet& springs = system.cloth().springs;
+  const SpringList& springs = system.cloth().springs;
   const int n = system.num_particles();
   m_offsets.assign(static_cast<std::size_t>(n) + 1, 0);
   for (Eigen::Index e = 0; e < springs.size(); ++e) {
@@ -52,7 +52,7 @@ void VertexBlockPotential::begin_step(double h, ConstVecRef x_n, ConstVecRef v_n
 
 void VertexBlockPotential::freeze_directions(ConstVecRef x) {
   if (m_c_spring == 0.0) return;
-  const SpringSet& springs = m_system.cloth().springs;
+  const SpringList& springs = m_system.cloth().springs;
   for (Eigen::Index e = 0; e < springs.size(); ++e) {
     const Vec3 d = particle(x, springs.second[e]) - particle(x, springs.first[e]);
     const double length = d.norm();
@@ -152,7 +152,7 @@ double VertexBlockPotential::value(ConstVecRef x, double& magnitude) const {
     gravity -= m_weight.dot(xi);
     if (friction.frozen()) g += friction.energy(i, xi);
   }
-  const SpringSet& springs = m_system.cloth().springs;
+  const SpringList& springs = m_system.cloth().springs;
   for (Eigen::Index e = 0; e < springs.size(); ++e) {
     const int i = springs.first[e], j = springs.second[e];
     g += spring_energy(particle(x, j) - particle(x, i), springs.stiffness[e], springs.rest[e]);

@@ -30,7 +30,7 @@ Xpbd::Xpbd(ClothSystem& system, const IntegratorOptions& options)
       m_substeps(static_cast<int>(options.setting_integer("substeps", own_keys))),
       m_iterations(static_cast<int>(options.setting_integer("iterations", own_keys))),
       m_jacobi(options.setting_choice("sweep", own_keys) == "jacobi") {
-  const SpringSet& springs = system.cloth().springs;
+  const SpringList& springs = system.cloth().springs;
   const int n = system.num_particles();
   const Eigen::Index count = springs.size();
   m_first.resize(count);

@@ -1,7 +1,8 @@
 // Grid geometry and spring families of docs/model.md section 2.
 #include <gtest/gtest.h>
 
-#include <map>
+#include <cmath>
+#include <iterator>
 
 #include "core/cloth/cloth.hpp"
 #include "tests/support/test_support.hpp"
@@ -27,54 +28,38 @@ TEST(Cloth, ParticlesSitOnTheGridOfSpec2) {
     }
 }
 
-TEST(Cloth, SpringCountsAndRestLengthsPerFamily) {
-  const int rows = 5, cols = 7;
-  const Cloth cloth = build_cloth(testing::small_cloth(rows, cols));
-  std::map<SpringFamily, int> count;
-  for (Eigen::Index e = 0; e < cloth.springs.size(); ++e) {
-    const SpringFamily f = cloth.springs.family[e];
-    ++count[f];
-    const double expected = f == SpringFamily::structural ? 0.02
-                            : f == SpringFamily::shear    ? 0.02 * std::sqrt(2.0)
-                                                          : 0.04;
-    EXPECT_NEAR(cloth.springs.rest[e], expected, 1e-15);
-    const double k = f == SpringFamily::structural ? 20.0 : f == SpringFamily::shear ? 10.0 : 2.0;
-    EXPECT_EQ(cloth.springs.stiffness[e], k);
+TEST(Cloth, StencilsAreTheFamiliesOffsetsWithTheirConstants) {
+  const Cloth cloth = build_cloth(testing::small_cloth(5, 7));
+  const struct {
+    int dr, dc;
+    SpringFamily family;
+    double stiffness, rest;
+  } expected[] = {{0, 1, SpringFamily::structural, 20.0, 0.02},
+                  {1, 0, SpringFamily::structural, 20.0, 0.02},
+                  {1, 1, SpringFamily::shear, 10.0, 0.02 * std::sqrt(2.0)},
+                  {1, -1, SpringFamily::shear, 10.0, 0.02 * std::sqrt(2.0)},
+                  {0, 2, SpringFamily::bending, 2.0, 0.04},
+                  {2, 0, SpringFamily::bending, 2.0, 0.04}};
+  ASSERT_EQ(cloth.stencils.size(), std::size(expected));
+  for (std::size_t k = 0; k < std::size(expected); ++k) {
+    const SpringStencil& s = cloth.stencils[k];
+    EXPECT_EQ(s.dr, expected[k].dr);
+    EXPECT_EQ(s.dc, expected[k].dc);
+    EXPECT_EQ(s.family, expected[k].family);
+    EXPECT_EQ(s.stiffness, expected[k].stiffness);
+    EXPECT_NEAR(s.rest, expected[k].rest, 1e-15);
   }
-  EXPECT_EQ(count[SpringFamily::structural], rows * (cols - 1) + (rows - 1) * cols);
-  EXPECT_EQ(count[SpringFamily::shear], 2 * (rows - 1) * (cols - 1));
-  EXPECT_EQ(count[SpringFamily::bending], rows * (cols - 2) + (rows - 2) * cols);
 }
 
-TEST(Cloth, ZeroStiffnessFamilyHasNoSprings) {
+TEST(Cloth, ZeroStiffnessFamilyHasNoStencils) {
   ClothParams p = testing::small_cloth(4, 4);
   p.k_shear = 0.0;
   p.k_bending = 0.0;
   const Cloth cloth = build_cloth(p);
+  ASSERT_EQ(cloth.stencils.size(), 2u);
+  EXPECT_EQ(cloth.stencils[0].family, SpringFamily::structural);
+  EXPECT_EQ(cloth.stencils[1].family, SpringFamily::structural);
   EXPECT_EQ(cloth.springs.size(), 2 * 4 * 3);
-}
-
-}  // namespace
-}  // namespace drape
-
-namespace drape {
-namespace {
-
-TEST(Cloth, SpringsComeInClassesOfDisjointPairs) {
-  // The per-spring Jacobian loops rely on it: within a class no particle appears twice.
-  const Cloth cloth = build_cloth(testing::small_cloth(7, 9));
-  std::vector<int> last_class(cloth.size(), -1);
-  int classes = 0;
-  std::vector<bool> used(cloth.size(), false);
-  for (Eigen::Index e = 0; e < cloth.springs.size(); ++e) {
-    const int i = cloth.springs.first[e], j = cloth.springs.second[e];
-    if (used[i] || used[j]) {  // a new class starts here
-      std::fill(used.begin(), used.end(), false);
-      ++classes;
-    }
-    used[i] = used[j] = true;
-  }
-  EXPECT_EQ(classes + 1, 12) << "two classes per offset, six offsets";
 }
 
 }  // namespace

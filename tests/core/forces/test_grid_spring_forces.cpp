@@ -18,7 +18,7 @@ namespace {
 Eigen::VectorXd reference_spring_forces(const Cloth& cloth, const Eigen::VectorXd& x,
                                         const Eigen::VectorXd& v, double c) {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(x.size());
-  const SpringSet& s = cloth.springs;
+  const SpringList& s = cloth.springs;
   for (Eigen::Index e = 0; e < s.size(); ++e) {
     const int i = s.first[e], j = s.second[e];
     const Vec3 d = particle(x, j) - particle(x, i);
@@ -121,13 +121,12 @@ TEST(SpringKernel, SseAndAvxBuildsGiveTheSameBits) {
   to_components(s.x, x);
   to_components(s.v, v);
   Eigen::ArrayX3d force_sse(n, 3), force_avx(n, 3), row(s.cloth.params.cols, 3);
+  const int rows = s.cloth.params.rows, cols = s.cloth.params.cols;
   for (const SpringStencil& stencil : s.cloth.stencils) {
-    const spring_kernel::Stencil k =
-        kernel_stencil(stencil, s.cloth.params.rows, s.cloth.params.cols);
     force_sse.setZero();
     force_avx.setZero();
-    spring_kernel::add_sse2(k, 0.05, kernel_arrays(x, v, force_sse, row));
-    spring_kernel::add_avx(k, 0.05, kernel_arrays(x, v, force_avx, row));
+    spring_kernel::add_sse2(stencil, rows, cols, 0.05, kernel_arrays(x, v, force_sse, row));
+    spring_kernel::add_avx(stencil, rows, cols, 0.05, kernel_arrays(x, v, force_avx, row));
     EXPECT_TRUE((force_sse == force_avx).all()) << "stencil (" << stencil.dr << ", " << stencil.dc << ")";
     EXPECT_GT(force_sse.abs().maxCoeff(), 0.0);
   }

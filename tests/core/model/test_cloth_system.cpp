@@ -101,7 +101,7 @@ TEST(ClothSystem, JacobianBlocksAreTheProductsOnAnyNumberOfThreads) {
     for (int i = 0; i < s.num_particles(); ++i)
       particle(product, i) = one.particle_x[static_cast<std::size_t>(i)] * particle(dx, i) +
                              one.particle_v[static_cast<std::size_t>(i)] * particle(dv, i);
-    const SpringSet& springs = s.cloth().springs;
+    const SpringList& springs = s.cloth().springs;
     for (Eigen::Index e = 0; e < springs.size(); ++e) {
       const int i = springs.first[e], j = springs.second[e];
       const auto k = static_cast<std::size_t>(e);

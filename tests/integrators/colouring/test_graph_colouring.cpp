@@ -7,7 +7,7 @@
 namespace drape {
 namespace {
 
-SpringSet grid_springs(int rows, int cols, bool bending) {
+SpringList grid_springs(int rows, int cols, bool bending) {
   ClothParams p = testing::small_cloth(rows, cols);
   p.k_bending = bending ? 1.0 : 0.0;
   return build_cloth(p).springs;
@@ -25,7 +25,7 @@ void expect_partition(const Colouring& colours, int n) {
 
 TEST(GraphColouring, NoSpringJoinsTwoParticlesOfOneColour) {
   for (bool bending : {false, true}) {
-    const SpringSet springs = grid_springs(7, 9, bending);
+    const SpringList springs = grid_springs(7, 9, bending);
     const Colouring colours = colour_particles(63, springs);
     expect_partition(colours, 63);
     std::vector<int> colour_of(63);
@@ -44,7 +44,7 @@ TEST(GraphColouring, NoSpringJoinsTwoParticlesOfOneColour) {
 }
 
 TEST(GraphColouring, NoTwoSpringsOfOneColourShareAParticle) {
-  const SpringSet springs = grid_springs(6, 5, true);
+  const SpringList springs = grid_springs(6, 5, true);
   const Colouring colours = colour_springs(30, springs);
   expect_partition(colours, static_cast<int>(springs.size()));
   for (const auto& colour : colours) {

@@ -243,11 +243,10 @@ TEST(ReducedNewtonSolver, ProjectedStartIsTheGalerkinProjectionWithTheCurrentS) 
   EXPECT_LE(error(galerkin), error(history.col(0)));
 }
 
-// The row-wise assembly (each block gathers the springs on it) with two springs on one pair in
-// either orientation, assembled twice with a
-// particle fixed in between, against the dense matrix of the same Jacobians. The force kernel
-// works on the grid's stencils, so only the Jacobians (which walk the spring list) see the
-// added springs: enough for the linear solve.
+// The row-wise assembly (each block gathers the springs on it) with two springs on every pair of
+// two offsets, one stencil added the other way round (0, -1) and one the same way (1, 1), each
+// with its own stiffness and rest length, assembled twice with a particle fixed in between,
+// against the dense matrix of the same Jacobians.
 TEST(ReducedNewtonSolver, AssemblyAddsSpringsOnOnePairAndFollowsTheFixedSet) {
   for (const ReducedSolve method : {ReducedSolve::conjugate_gradients, ReducedSolve::multigrid_cg,
                                     ReducedSolve::sparse_ldlt}) {
@@ -255,30 +254,19 @@ TEST(ReducedNewtonSolver, AssemblyAddsSpringsOnOnePairAndFollowsTheFixedSet) {
     p.damping_spring = 0.05;
     p.damping_air = 0.01;
     Cloth cloth = build_cloth(p);
-    SpringSet& springs = cloth.springs;
-    const Eigen::Index n = springs.size();
-    // Copies of the last two springs, far from the pinned particle 0: the last one reversed.
-    const Eigen::Index copied[2] = {n - 1, n - 2};
-    const int first[2] = {springs.second[n - 1], springs.first[n - 2]};
-    const int second[2] = {springs.first[n - 1], springs.second[n - 2]};
-    springs.first.conservativeResize(n + 2);
-    springs.second.conservativeResize(n + 2);
-    springs.rest.conservativeResize(n + 2);
-    springs.stiffness.conservativeResize(n + 2);
-    for (Eigen::Index k = 0; k < 2; ++k) {
-      springs.first[n + k] = first[k];
-      springs.second[n + k] = second[k];
-      springs.rest[n + k] = 0.7 * springs.rest[copied[k]];
-      springs.stiffness[n + k] = 3.0 * springs.stiffness[copied[k]];
-      springs.family.push_back(springs.family[static_cast<std::size_t>(copied[k])]);
-    }
+    cloth.stencils.push_back(
+        {0, -1, 3.0 * p.k_structural, 0.7 * p.spacing, SpringFamily::structural});
+    cloth.stencils.push_back({1, 1, 3.0 * p.k_shear, 0.9 * p.spacing, SpringFamily::shear});
+    cloth.springs = list_springs(cloth.stencils, p.rows, p.cols);
+    // An end of the pairs (2, 2)-(2, 3) and (2, 2)-(3, 3), far from the pinned particle 0.
+    const int shared = cloth.index(2, 2);
     ClothSystem s(std::move(cloth), nullptr, ForceParams{});
     s.constraints().fix_at(0, s.cloth().rest_positions.segment<3>(0));
     const Eigen::Index n3 = 3 * s.num_particles();
     const Eigen::VectorXd y = testing::jitter(s.initial_state(0.0), 0.003, 23);
     const Eigen::VectorXd r = testing::jitter(Eigen::VectorXd::Zero(2 * n3), 1.0, 24);
     ReducedNewtonSolver solver(s, method, ForceSplit::all, 1e-13, 500);
-    for (const int fixed : {-1, second[0]}) {  // then an end of the shared pair fixed
+    for (const int fixed : {-1, shared}) {  // then an end of doubled pairs fixed
       if (fixed >= 0) s.constraints().fix_at(fixed, y.segment<3>(3 * fixed));
       solver.update(y.head(n3), y.tail(n3), 0.02);
       Eigen::VectorXd z(2 * n3);

@@ -15,7 +15,7 @@ namespace {
 constexpr double kContactWeight = 40.0;
 
 /// A from its definition: rows of the free particles in ascending order.
-Eigen::MatrixXd dense_a(const SpringSet& springs, const std::vector<unsigned char>& fixed,
+Eigen::MatrixXd dense_a(const SpringList& springs, const std::vector<unsigned char>& fixed,
                         const std::vector<unsigned char>& contact, double diagonal, double extra) {
   std::vector<int> row(fixed.size(), -1);
   int rows = 0;
@@ -93,7 +93,7 @@ TEST(PdGlobalMatrix, RefactoringTakesTheNewContactFlags) {
 
 // With no springs A is diagonal: the solve divides by d, or by d + w in contact.
 TEST(PdGlobalMatrix, WithoutSpringsTheSolveIsADivision) {
-  SpringSet none;
+  SpringList none;
   PdGlobalMatrix matrix(none, kContactWeight);
   matrix.factor({0, 1, 0}, {1, 0, 0}, 4.0, 0.0);
   ASSERT_EQ(matrix.num_free(), 2);
