@@ -244,7 +244,9 @@ FAILED_MARK = "x"
 def mark_failed(ax, failures, color, index=0, count=1):
     """An x at the bottom of the axes at each (x, text) of `failures` ("diverged (2 of 2)"),
     its text above it, series `index` of `count` dodged as log_errorbar does and its text a line
-    higher, so that a step where a method failed stays on the axis and says so."""
+    higher, so that a step where a method failed stays on the axis and says so. A series' k-th
+    failure's text goes k * count lines higher still: two failures of one series side by side
+    would write over each other."""
     if not failures:
         return
     shift = DODGE ** (index - (count - 1) / 2)
@@ -252,9 +254,9 @@ def mark_failed(ax, failures, color, index=0, count=1):
     xs = [x * shift for x, _ in failures]
     ax.plot(xs, [0.03] * len(xs), ls="none", marker=FAILED_MARK, ms=7, mew=1.5, color=color,
             transform=floor, clip_on=False)
-    for x, text in zip(xs, (text for _, text in failures)):
-        ax.text(x, 0.07 + 0.07 * index, text, transform=floor, fontsize=MIN_FONT, color=color,
-                ha="center", va="bottom")
+    for k, (x, text) in enumerate(zip(xs, (text for _, text in failures))):
+        ax.text(x, 0.07 + 0.07 * (index + k * count), text, transform=floor, fontsize=MIN_FONT,
+                color=color, ha="center", va="bottom")
 
 
 def label_log_ticks(ax):
