@@ -13,7 +13,6 @@ Usage: live_hands_check.py DRAPELAB SOURCE_DIR WORK_DIR
 """
 import base64
 import json
-import math
 import pathlib
 import socket
 import struct
