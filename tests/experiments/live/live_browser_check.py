@@ -14,12 +14,11 @@ selenium, skipped)
 """
 import json
 import os
-import pathlib
 import shutil
 import sys
 import time
 
-from live_client import LiveRun, replay_events
+from live_client import LiveRun, check_arguments, replay_events
 
 SCREENSHOT = os.environ.get("DRAPE_LIVE_SCREENSHOT")
 CHROMIUM_FLAGS = ["--headless=new", "--no-sandbox", "--use-angle=swiftshader",
@@ -173,10 +172,8 @@ def end_check(driver, drapelab, source, work):
 
 
 def main():
-    drapelab, source, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+    drapelab, source, work = check_arguments(sys.argv)
     driver = browser()
-    shutil.rmtree(work, ignore_errors=True)
-    work.mkdir(parents=True)
     try:
         key_check(driver, drapelab, source, work)
         pointer_check(driver, drapelab, source, work)

@@ -6,7 +6,6 @@ that `drapelab run OUT/scene.json` replays the same events (types, particles, ti
 Usage: live_check.py DRAPELAB SOURCE_DIR WORK_DIR
 """
 import json
-import pathlib
 import shutil
 import signal
 import socket
@@ -17,13 +16,11 @@ import time
 import urllib.error
 import urllib.request
 
-from live_client import free_port
+from live_client import check_arguments, free_port
 
 
 def main():
-    drapelab, source, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-    shutil.rmtree(work, ignore_errors=True)
-    work.mkdir(parents=True)
+    drapelab, source, work = check_arguments(sys.argv)
     out = work / "live"
     port = free_port()
     scene = source / "experiments/scenes/fig6_map.json"

@@ -32,7 +32,7 @@ import urllib.request
 
 import numpy
 
-from live_client import LiveRun, free_port, replay_events
+from live_client import LiveRun, check_arguments, free_port, replay_events
 
 
 def key_between_scene_events(drapelab, source, work):
@@ -168,9 +168,7 @@ def runaway_bound(drapelab, source, work):
 
 
 def main():
-    drapelab, source, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-    shutil.rmtree(work, ignore_errors=True)
-    work.mkdir(parents=True)
+    drapelab, source, work = check_arguments(sys.argv)
     key_between_scene_events(drapelab, source, work)
     live_hands_without_input(drapelab, source, work)
     failed_last_write(drapelab, source, work)
